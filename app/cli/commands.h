@@ -1,0 +1,33 @@
+// Command-line front end: each command registers its options on the CLI11 app and runs when
+// chosen. A command's run function returns the process exit code; failures print one line on
+// stderr ("sinew: <file>:<line>: <reason>").
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "sinew/motion/asset.h"
+
+namespace sinew::app {
+
+// Import options shared by every command that reads a motion file.
+struct ImportFlags {
+  std::string units;  // "", m, cm, mm, in
+  std::string up;     // "", Y, Z
+  double fps = 0.0;   // 0: the file's own rate
+  void addTo(CLI::App& command);
+  // Options for the importer, or a message naming the bad flag.
+  Result<motion::ImportOptions> options() const;
+};
+
+// The clip called `name` (the first clip when empty), or a message listing the names there are.
+Result<int> selectClip(const motion::MotionAsset& asset, const std::string& name);
+
+int fail(const std::string& message);  // prints "sinew: message" to stderr, returns 1
+
+void addInfoCommand(CLI::App& app, int& exit_code);
+void addConvertCommand(CLI::App& app, int& exit_code);
+
+}  // namespace sinew::app

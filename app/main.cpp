@@ -1,0 +1,23 @@
+// sinew: the command-line front end (the editor arrives with its own issue).
+#include <iostream>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Sinew: measure, edit and physically correct rhythmic character motion"};
+  app.set_version_flag("--version", "sinew 0.1.0");
+  app.require_subcommand(0, 1);
+  int exit_code = 0;
+  sinew::app::addInfoCommand(app, exit_code);
+  sinew::app::addConvertCommand(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+  if (app.get_subcommands().empty()) {
+    std::cout << app.help();
+    return 0;
+  }
+  return exit_code;
+}

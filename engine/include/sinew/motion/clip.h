@@ -1,0 +1,59 @@
+// A clip: a frame time and, per frame and joint, the local rotation and translation (and scale,
+// only when a glTF file animates it). Engine units: metres, Y-up, seconds.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "sinew/core/status.h"
+#include "sinew/motion/skeleton.h"
+
+namespace sinew::motion {
+
+struct Clip {
+  std::string name;           // animation name (glTF) or file stem (BVH)
+  double frame_time = 0.0;    // seconds per frame, > 0
+  int frame_count = 0;        // >= 1
+  int joint_count = 0;        // equals the skeleton's joint count
+  std::vector<glm::dquat> rotations;     // (frames x joints) local rotation, unit quaternions
+  std::vector<glm::dvec3> translations;  // (frames x joints) local translation, metres
+  std::vector<glm::dvec3> scales;        // (frames x joints) local scale, or empty when all 1
+  // (joints) the first frame's Euler angles as the source file wrote them, radians, in each
+  // joint's channel order; empty unless the clip came from BVH. Export picks the same angle
+  // branch (190 degrees stays 190, not -170), so curves in other tools do not jump.
+  std::vector<glm::dvec3> euler_start;
+
+  double duration() const { return frame_time * (frame_count > 0 ? frame_count - 1 : 0); }
+  double fps() const { return frame_time > 0.0 ? 1.0 / frame_time : 0.0; }
+
+  const glm::dquat& rotation(int frame, int joint) const {
+    return rotations[static_cast<size_t>(frame) * joint_count + joint];
+  }
+  const glm::dvec3& translation(int frame, int joint) const {
+    return translations[static_cast<size_t>(frame) * joint_count + joint];
+  }
+  glm::dvec3 scale(int frame, int joint) const {
+    return scales.empty() ? glm::dvec3(1.0) : scales[static_cast<size_t>(frame) * joint_count + joint];
+  }
+
+  // Sizes agree with the skeleton, frame time positive, values finite, quaternions unit length.
+  Status validate(const Skeleton& skeleton) const;
+};
+
+// A clip of `frame_count` frames holding the skeleton's rest pose.
+Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time);
+
+// Forward kinematics for one frame: world transforms (joints) into `out`, metres.
+// Precondition: out.size() == skeleton.jointCount(), clip validated against skeleton.
+void worldTransforms(const Skeleton& skeleton, const Clip& clip, int frame,
+                     std::span<glm::dmat4> out);
+
+// World positions of every joint for one frame, metres.
+std::vector<glm::dvec3> worldPositions(const Skeleton& skeleton, const Clip& clip, int frame);
+
+}  // namespace sinew::motion

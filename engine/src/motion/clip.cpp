@@ -1,0 +1,70 @@
+#include "sinew/motion/clip.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace sinew::motion {
+
+Status Clip::validate(const Skeleton& skeleton) const {
+  const std::string label = "clip '" + name + "'";
+  if (!(frame_time > 0.0) || !std::isfinite(frame_time)) {
+    return Status::error(label + ": frame time must be a positive number of seconds");
+  }
+  if (frame_count < 1) return Status::error(label + ": has no frames");
+  if (joint_count != skeleton.jointCount()) {
+    return Status::error(label + ": has " + std::to_string(joint_count) + " joints, the skeleton " +
+                         std::to_string(skeleton.jointCount()));
+  }
+  const size_t size = static_cast<size_t>(frame_count) * joint_count;
+  if (rotations.size() != size || translations.size() != size ||
+      (!scales.empty() && scales.size() != size)) {
+    return Status::error(label + ": pose arrays do not hold frames x joints values");
+  }
+  for (size_t n = 0; n < size; ++n) {
+    const glm::dquat& q = rotations[n];
+    const glm::dvec3& t = translations[n];
+    if (!(std::abs(glm::length(q) - 1.0) < 1e-6) || !std::isfinite(t.x) || !std::isfinite(t.y) ||
+        !std::isfinite(t.z)) {
+      return Status::error(label + ": frame " + std::to_string(n / joint_count) + ", joint '" +
+                           skeleton.names[n % joint_count] + "': not a finite pose");
+    }
+  }
+  return {};
+}
+
+Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time) {
+  Clip clip;
+  clip.name = "rest";
+  clip.frame_time = frame_time;
+  clip.frame_count = frame_count;
+  clip.joint_count = skeleton.jointCount();
+  for (int f = 0; f < frame_count; ++f) {
+    clip.rotations.insert(clip.rotations.end(), skeleton.rest_rotations.begin(),
+                          skeleton.rest_rotations.end());
+    clip.translations.insert(clip.translations.end(), skeleton.offsets.begin(),
+                             skeleton.offsets.end());
+  }
+  return clip;
+}
+
+void worldTransforms(const Skeleton& skeleton, const Clip& clip, int frame,
+                     std::span<glm::dmat4> out) {
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    glm::dmat4 local = glm::translate(glm::dmat4(1.0), clip.translation(frame, j)) *
+                       glm::mat4_cast(clip.rotation(frame, j));
+    if (!clip.scales.empty()) local = glm::scale(local, clip.scale(frame, j));
+    const int parent = skeleton.parents[j];
+    out[j] = parent == kNoParent ? local : out[parent] * local;
+  }
+}
+
+std::vector<glm::dvec3> worldPositions(const Skeleton& skeleton, const Clip& clip, int frame) {
+  std::vector<glm::dmat4> world(skeleton.jointCount());
+  worldTransforms(skeleton, clip, frame, world);
+  std::vector<glm::dvec3> positions(world.size());
+  for (size_t j = 0; j < world.size(); ++j) positions[j] = glm::dvec3(world[j][3]);
+  return positions;
+}
+
+}  // namespace sinew::motion
