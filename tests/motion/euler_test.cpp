@@ -69,6 +69,24 @@ TEST(EulerTest, PicksTheBranchAndWrapNearestTheReference) {
   EXPECT_NEAR(wide_back.x / deg, 10.0, 1e-9);
 }
 
+TEST(EulerTest, PrincipalRangeIsWhatPlainExportersWrite) {
+  const EulerOrder zxy = *EulerOrder::fromName("ZXY");
+  const double deg = std::numbers::pi / 180.0;
+  // A middle angle past 90 degrees comes back as the principal equivalent, whatever the reference.
+  const glm::dquat q = eulerToQuat(zxy, {10 * deg, 120 * deg, 5 * deg});
+  const glm::dvec3 principal = quatToEuler(zxy, q, {10 * deg, 120 * deg, 5 * deg},
+                                           EulerRange::kPrincipal);
+  EXPECT_NEAR(principal.y / deg, 60.0, 1e-9);
+  EXPECT_NEAR(principal.x / deg, -170.0, 1e-9);
+  EXPECT_NEAR(principal.z / deg, -175.0, 1e-9);
+  // Exactly 180 degrees keeps the sign of the reference.
+  const glm::dquat flip = eulerToQuat(zxy, {180 * deg, 0.0, 0.0});
+  EXPECT_NEAR(quatToEuler(zxy, flip, {-179 * deg, 0, 0}, EulerRange::kPrincipal).x / deg, -180.0,
+              1e-9);
+  EXPECT_NEAR(quatToEuler(zxy, flip, {179 * deg, 0, 0}, EulerRange::kPrincipal).x / deg, 180.0,
+              1e-9);
+}
+
 TEST(EulerTest, GimbalLockStillReproducesTheRotation) {
   for (const char* name : kOrders) {
     const EulerOrder order = *EulerOrder::fromName(name);

@@ -411,6 +411,7 @@ class BvhParser {
           const double v = *value++;
           if (isRotation(type)) {
             angles[rotation++] = v * kRadians;
+            if (std::abs(v) > 180.0) clip.euler_range = EulerRange::kContinuous;
           } else {
             translation[channelAxis(type)] = v;  // position channels replace the offset
           }

@@ -129,7 +129,7 @@ std::string writeBvh(const Skeleton& skeleton, const Clip& clip, const SourceFra
       glm::dvec3 angles(0.0);
       if (layout.rotationCount() == 3) {
         angles = quatToEuler(layout.eulerOrder(), frame.rotationFromEngine(clip.rotation(f, j)),
-                             previous[j]);
+                             previous[j], clip.euler_range);
         previous[j] = angles;
       }
       int rotation = 0;

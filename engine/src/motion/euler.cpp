@@ -56,7 +56,8 @@ glm::dquat eulerToQuat(const EulerOrder& order, const glm::dvec3& angles) {
   return q;
 }
 
-glm::dvec3 quatToEuler(const EulerOrder& order, const glm::dquat& q, const glm::dvec3& reference) {
+glm::dvec3 quatToEuler(const EulerOrder& order, const glm::dquat& q, const glm::dvec3& reference,
+                       EulerRange range) {
   // R = R_i(a) R_j(b) R_k(c) with (i, j, k) a permutation of the axes and s its parity:
   // sin b = s M_ik, a = atan2(-s M_jk, M_kk), c = atan2(-s M_ij, M_ii).
   const glm::dmat3 m = glm::mat3_cast(glm::normalize(q));
@@ -82,6 +83,15 @@ glm::dvec3 quatToEuler(const EulerOrder& order, const glm::dquat& q, const glm::
   // The other branch: (a + pi, pi - b, c + pi) is the same rotation.
   const double pi = std::numbers::pi;
   glm::dvec3 second(first[0] + pi, pi - first[1], first[2] + pi);
+  if (range == EulerRange::kPrincipal) {
+    // First branch as is (middle angle from asin); outer angles into [-pi, pi], where exactly
+    // +-pi goes to the side of the reference.
+    for (int n : {0, 2}) {
+      first[n] = nearestWrap(first[n], 0.0);
+      if (std::abs(std::abs(first[n]) - pi) < 1e-12) first[n] = reference[n] < 0.0 ? -pi : pi;
+    }
+    return first;
+  }
   for (int n = 0; n < 3; ++n) {
     first[n] = nearestWrap(first[n], reference[n]);
     second[n] = nearestWrap(second[n], reference[n]);

@@ -23,10 +23,12 @@ struct Clip {
   std::vector<glm::dquat> rotations;     // (frames x joints) local rotation, unit quaternions
   std::vector<glm::dvec3> translations;  // (frames x joints) local translation, metres
   std::vector<glm::dvec3> scales;        // (frames x joints) local scale, or empty when all 1
-  // (joints) the first frame's Euler angles as the source file wrote them, radians, in each
-  // joint's channel order; empty unless the clip came from BVH. Export picks the same angle
-  // branch (190 degrees stays 190, not -170), so curves in other tools do not jump.
+  // How the source BVH wrote Euler angles, so that export writes them the same way and curves in
+  // other tools look as they did: (joints) the first frame's angles, radians, in each joint's
+  // channel order (empty unless the clip came from BVH), and whether any angle went beyond
+  // +-180 degrees (unwrapped curves) or all were wrapped into (-180, 180].
   std::vector<glm::dvec3> euler_start;
+  EulerRange euler_range = EulerRange::kPrincipal;
 
   double duration() const { return frame_time * (frame_count > 0 ? frame_count - 1 : 0); }
   double fps() const { return frame_time > 0.0 ? 1.0 / frame_time : 0.0; }

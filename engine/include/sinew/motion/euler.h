@@ -24,10 +24,17 @@ struct EulerOrder {
 // Angles in radians, in channel order.
 glm::dquat eulerToQuat(const EulerOrder& order, const glm::dvec3& angles);
 
-// The Euler angles of q in the given order, radians, in channel order. Of the infinitely many
-// equivalent triples (the two Tait-Bryan branches, each angle plus any multiple of 2 pi) it
-// returns the one closest to `reference`, so that curves stay continuous frame to frame and a
-// decoded file's angles come back as written. Pass the previous frame's angles as reference.
-glm::dvec3 quatToEuler(const EulerOrder& order, const glm::dquat& q, const glm::dvec3& reference);
+// How angles are written. kPrincipal: the middle angle within [-pi/2, pi/2], the others within
+// [-pi, pi], as a plain matrix-to-Euler conversion gives (what most BVH exporters write; curves
+// jump at +-180 degrees). kContinuous: unwrapped, so that curves never jump.
+enum class EulerRange { kPrincipal, kContinuous };
+
+// The Euler angles of q in the given order, radians, in channel order. Of the equivalent triples
+// (two Tait-Bryan branches, each angle plus any multiple of 2 pi) it returns, for kContinuous, the
+// one closest to `reference`; for kPrincipal the principal one, with `reference` deciding only
+// what the principal range leaves open (+-pi, gimbal lock). Either way a decoded file's angles
+// come back as written. Pass the previous frame's angles as reference.
+glm::dvec3 quatToEuler(const EulerOrder& order, const glm::dquat& q, const glm::dvec3& reference,
+                       EulerRange range = EulerRange::kContinuous);
 
 }  // namespace sinew::motion
