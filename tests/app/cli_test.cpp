@@ -1,1 +1,116 @@
+// The sinew command line, run as a user runs it: exit codes, one-line errors, JSON that parses.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace sinew {
+namespace {
+
+std::string walk() { return test::quote(test::sourceDir() / "assets" / "biped_walk.bvh"); }
+
+TEST(CliTest, InfoDescribesTheBundledWalk) {
+  const test::CommandResult result = test::runSinew("info " + walk());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("22 (+5 end sites), 69 channels"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("129 frames at 30 fps"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("units      cm, up Y"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("LeftUpLeg  [Zrotation Xrotation Yrotation]"), std::string::npos);
+}
+
+TEST(CliTest, InfoJsonCarriesTheFacts) {
+  const test::CommandResult result = test::runSinew("info --json " + walk());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json info = nlohmann::json::parse(result.out);
+  EXPECT_EQ(info["joint_count"], 22);
+  EXPECT_EQ(info["channel_count"], 69);
+  EXPECT_EQ(info["frames"], 129);
+  EXPECT_NEAR(info["fps"].get<double>(), 30.0, 1e-3);
+  EXPECT_EQ(info["units"], "cm");
+  EXPECT_EQ(info["up_axis"], "Y");
+  EXPECT_EQ(info["joints"][0]["name"], "Hips");
+  EXPECT_EQ(info["joints"][0]["rotation_order"], "ZXY");
+  EXPECT_EQ(info["joints"][1]["parent"], 0);
+}
+
+TEST(CliTest, FailuresExitNonZeroWithOneLineNamingTheFile) {
+  test::TempDir dir;
+  test::writeText(dir / "bad.bvh", "HIERARCHY\nROOT a\n{\n OFFSET 0 0 0\n CHANNELS 3 Xrotation\n");
+  const test::CommandResult bad = test::runSinew("info " + test::quote(dir / "bad.bvh"));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_EQ(bad.err, "sinew: " + (dir / "bad.bvh").string() +
+                         ":5: CHANNELS count 3 does not match the 1 channel names that follow, "
+                         "in joint 'a'\n");
+  const test::CommandResult missing = test::runSinew("info " + test::quote(dir / "none.bvh"));
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("none.bvh: no such file"), std::string::npos);
+  const test::CommandResult animation = test::runSinew("info " + walk() + " --animation Run");
+  EXPECT_NE(animation.exit_code, 0);
+  EXPECT_NE(animation.err.find("no animation named 'Run'; the file has: biped_walk"),
+            std::string::npos)
+      << animation.err;
+  const test::CommandResult usage = test::runSinew("info");
+  EXPECT_NE(usage.exit_code, 0);
+}
+
+TEST(CliTest, ConvertBvhToBvhKeepsChannelsAndCanResample) {
+  test::TempDir dir;
+  const test::CommandResult same = test::runSinew("convert " + walk() + " " +
+                                                  test::quote(dir / "copy.bvh"));
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  EXPECT_NE(same.out.find("wrote"), std::string::npos);
+  const test::CommandResult info = test::runSinew("info --json " + test::quote(dir / "copy.bvh"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["channel_count"], 69);
+
+  const test::CommandResult fast = test::runSinew("convert " + walk() + " " +
+                                                  test::quote(dir / "fast.bvh") + " --fps 60");
+  ASSERT_EQ(fast.exit_code, 0) << fast.err;
+  const nlohmann::json resampled =
+      nlohmann::json::parse(test::runSinew("info --json " + test::quote(dir / "fast.bvh")).out);
+  EXPECT_EQ(resampled["frames"], 257);  // 128 intervals at 30 fps -> 256 at 60 fps
+  EXPECT_NEAR(resampled["fps"].get<double>(), 60.0, 1e-6);
+}
+
+TEST(CliTest, ConvertRefusesUnknownFormatsAndKeepsTheOldFile) {
+  test::TempDir dir;
+  const auto target = dir / "keep.bvh";
+  test::writeText(target, "precious");
+  // A failed import must not touch the target.
+  test::writeText(dir / "bad.bvh", "not a bvh");
+  const test::CommandResult result =
+      test::runSinew("convert " + test::quote(dir / "bad.bvh") + " " + test::quote(target));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_EQ(test::readText(target), "precious");
+  const test::CommandResult fbx = test::runSinew("convert " + walk() + " " +
+                                                 test::quote(dir / "out.fbx"));
+  EXPECT_NE(fbx.exit_code, 0);
+  EXPECT_NE(fbx.err.find("unknown file type '.fbx'"), std::string::npos) << fbx.err;
+}
+
+TEST(CliTest, InfoAndConvertWorkOnEveryRealFile) {
+  SINEW_REQUIRE_SHARED_DATA();
+  test::TempDir dir;
+  std::vector<std::filesystem::path> files = test::sharedFiles("bvh", ".bvh");
+  for (const auto& glb : test::sharedFiles("gltf", ".glb")) files.push_back(glb);
+  ASSERT_GE(files.size(), 11u);
+  for (const auto& path : files) {
+    SCOPED_TRACE(path.filename().string());
+    const test::CommandResult info = test::runSinew("info --json " + test::quote(path));
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    const nlohmann::json parsed = nlohmann::json::parse(info.out);
+    EXPECT_GT(parsed["joint_count"].get<int>(), 0);
+    for (const char* extension : {".bvh", ".glb", ".gltf"}) {
+      const auto out = dir / (path.stem().string() + extension);
+      const test::CommandResult convert =
+          test::runSinew("convert " + test::quote(path) + " " + test::quote(out));
+      ASSERT_EQ(convert.exit_code, 0) << convert.err;
+      const test::CommandResult back = test::runSinew("info --json " + test::quote(out));
+      ASSERT_EQ(back.exit_code, 0) << back.err;
+      EXPECT_EQ(nlohmann::json::parse(back.out)["joint_count"], parsed["joint_count"]) << extension;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sinew

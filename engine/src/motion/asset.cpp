@@ -77,8 +77,7 @@ Clip resampleClip(const Clip& clip, double frame_time) {
   out.joint_count = clip.joint_count;
   out.euler_start = clip.euler_start;
   out.euler_range = clip.euler_range;
-  // Keep every frame whose time is within the original duration (plus rounding slack).
-  out.frame_count = std::max(1, static_cast<int>(std::floor(clip.duration() / frame_time + 1e-9)) + 1);
+  out.frame_count = frameCountFor(clip.duration(), frame_time);
   const size_t size = static_cast<size_t>(out.frame_count) * clip.joint_count;
   out.rotations.resize(size);
   out.translations.resize(size);

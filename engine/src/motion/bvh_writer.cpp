@@ -13,7 +13,7 @@ constexpr double kDegrees = 180.0 / 3.14159265358979323846;
 // Fixed-point with 6 decimals: exact to 5e-7 (degrees or file units), read by every BVH tool.
 void appendNumber(std::string& out, double value) {
   if (std::abs(value) < 5e-7) value = 0.0;  // no "-0.000000"
-  char buffer[64];
+  char buffer[400];  // room for any finite double in fixed notation (up to 309 integer digits)
   const auto [end, error] =
       std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::fixed, 6);
   out.append(buffer, error == std::errc() ? end : buffer);

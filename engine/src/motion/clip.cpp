@@ -33,6 +33,11 @@ Status Clip::validate(const Skeleton& skeleton) const {
   return {};
 }
 
+int frameCountFor(double duration, double frame_time) {
+  if (!(duration > 0.0) || !(frame_time > 0.0)) return 1;
+  return static_cast<int>(std::floor(duration / frame_time + 1e-3)) + 1;
+}
+
 Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time) {
   Clip clip;
   clip.name = "rest";

@@ -47,6 +47,11 @@ struct Clip {
   Status validate(const Skeleton& skeleton) const;
 };
 
+// Frames needed to cover `duration` seconds at `frame_time`, both ends included. Times within 0.1%
+// of a frame past a whole frame count as whole: files round frame times (0.0333333 for 1/30 s)
+// and glTF stores key times as floats, and neither should lose the last frame to rounding.
+int frameCountFor(double duration, double frame_time);
+
 // A clip of `frame_count` frames holding the skeleton's rest pose.
 Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time);
 

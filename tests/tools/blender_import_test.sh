@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Exports the bundled walk (and, when present, a real Bandai capture) with `sinew convert` and
+# imports the BVH in Blender: same bone count and frame count. Skips (exit 77) without Blender.
+set -euo pipefail
+sinew=$1 source_dir=$2 shared=$3
+if ! command -v blender >/dev/null; then
+  echo "blender is not installed; skipping (./scripts/test installs it)"
+  exit 77
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+specs=()
+"$sinew" convert "$source_dir/assets/biped_walk.bvh" "$work/walk.bvh" >/dev/null
+specs+=("$work/walk.bvh:22:129")
+bandai="$shared/bvh/bandai_dataset-1_walk_normal_001.bvh"
+if [ -f "$bandai" ]; then
+  "$sinew" convert "$bandai" "$work/bandai.bvh" >/dev/null
+  specs+=("$work/bandai.bvh:22:195")
+else
+  echo "note: $bandai not found; checking the bundled walk only"
+fi
+status=0
+blender -b --factory-startup --python-exit-code 1 \
+  --python "$source_dir/tests/tools/blender_import.py" -- "${specs[@]}" >"$work/blender.log" 2>&1 ||
+  status=$?
+grep -E "^blender:" "$work/blender.log" || true
+if [ "$status" -ne 0 ]; then
+  echo "Blender exited with $status; the end of its log:"
+  tail -n 30 "$work/blender.log"
+fi
+exit "$status"
