@@ -79,7 +79,7 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
       {"joints", joints},
       {"animations", clips},
       {"meshes", meshes},
-      {"skins", asset.gltf ? 1 : 0},
+      {"skins", asset.gltf ? asset.gltf->skin_count : 0},
       {"warnings", asset.warnings},
   };
   if (selected >= 0) {
@@ -98,8 +98,12 @@ void printText(const motion::MotionAsset& asset, int selected, std::ostream& out
   const nlohmann::json info = infoJson(asset, selected);
   out << asset.path.string() << '\n';
   out << "  format     " << (asset.gltf ? "glTF" : "BVH") << '\n';
-  out << "  joints     " << skeleton.jointCount() << " (+" << info["end_site_count"].get<int>()
-      << " end sites), " << skeleton.channelCount() << " channels\n";
+  out << "  joints     " << skeleton.jointCount();
+  if (!asset.gltf) {  // channels and End Sites are BVH notions
+    out << " (+" << info["end_site_count"].get<int>() << " end sites), "
+        << skeleton.channelCount() << " channels";
+  }
+  out << '\n';
   if (selected >= 0) {
     const motion::Clip& clip = asset.clips[selected];
     out << "  animation  '" << clip.name << "': " << clip.frame_count << " frames at "
@@ -119,7 +123,9 @@ void printText(const motion::MotionAsset& asset, int selected, std::ostream& out
     }
   }
   if (asset.gltf) {
-    out << "  skins      1\n  meshes     " << asset.meshes.size() << '\n';
+    out << "  skins      " << asset.gltf->skin_count
+        << (asset.gltf->skin_count > 1 ? " (the first is imported)" : "") << "\n  meshes     "
+        << asset.meshes.size() << '\n';
     for (const motion::SkinnedMesh& mesh : asset.meshes) {
       out << "    '" << mesh.name << "': " << mesh.positions.size() << " vertices, "
           << mesh.indices.size() / 3 << " triangles\n";

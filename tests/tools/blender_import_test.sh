@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Exports the bundled walk (and, when present, a real Bandai capture) with `sinew convert` and
-# imports the BVH in Blender: same bone count and frame count. Skips (exit 77) without Blender.
+# Exports the bundled walk (and, when present, a real Bandai capture and the Fox) with
+# `sinew convert` and imports them in Blender: BVH with the same bone and frame counts, glTF
+# with the same bone count (Blender keys glTF at its own scene rate, so frames are not compared).
+# Skips (exit 77) without Blender.
 set -euo pipefail
 sinew=$1 source_dir=$2 shared=$3
 if ! command -v blender >/dev/null; then
@@ -11,11 +13,13 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 specs=()
 "$sinew" convert "$source_dir/assets/biped_walk.bvh" "$work/walk.bvh" >/dev/null
-specs+=("$work/walk.bvh:22:129")
+"$sinew" convert "$source_dir/assets/biped_walk.bvh" "$work/walk.glb" >/dev/null
+specs+=("$work/walk.bvh:22:129" "$work/walk.glb:22:0")
 bandai="$shared/bvh/bandai_dataset-1_walk_normal_001.bvh"
 if [ -f "$bandai" ]; then
   "$sinew" convert "$bandai" "$work/bandai.bvh" >/dev/null
-  specs+=("$work/bandai.bvh:22:195")
+  "$sinew" convert "$shared/gltf/Fox.glb" "$work/fox_walk.glb" --animation Walk >/dev/null
+  specs+=("$work/bandai.bvh:22:195" "$work/fox_walk.glb:24:0")
 else
   echo "note: $bandai not found; checking the bundled walk only"
 fi

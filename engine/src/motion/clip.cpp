@@ -1,5 +1,6 @@
 #include "sinew/motion/clip.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,7 +36,8 @@ Status Clip::validate(const Skeleton& skeleton) const {
 
 int frameCountFor(double duration, double frame_time) {
   if (!(duration > 0.0) || !(frame_time > 0.0)) return 1;
-  return static_cast<int>(std::floor(duration / frame_time + 1e-3)) + 1;
+  // Capped so that absurd inputs stay representable; callers refuse what they cannot hold.
+  return static_cast<int>(std::min(std::floor(duration / frame_time + 1e-3) + 1.0, 2e9));
 }
 
 Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time) {

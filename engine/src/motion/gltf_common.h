@@ -1,15 +1,17 @@
-// What the glTF reader and writer share: parsing a document with tinygltf, and a node's local
-// transform. Internal to the engine.
+// The glTF plumbing under the reader and writer: parsing a document with tinygltf, reading
+// accessors safely, and a node's local transform. Internal to the engine.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
-#include <tiny_gltf.h>
+#include <glm/vec4.hpp>
 
 #include "sinew/core/status.h"
 
@@ -28,6 +30,24 @@ bool isGlb(std::string_view bytes);
 Result<tinygltf::Model> parseDocument(std::string_view bytes, bool binary,
                                       const std::filesystem::path& directory,
                                       const std::string& label, ImageBytes images);
+
+// An accessor's elements as doubles: normalized integers mapped to [0, 1] or [-1, 1] as the
+// spec says, other integers as their values (exact in a double).
+struct AccessorValues {
+  int components = 0;                // numbers per element
+  size_t count = 0;                  // elements
+  std::vector<double> values;        // (count x components), matrices column by column
+  glm::dvec4 vec4(size_t n) const {  // the first (up to) four numbers of element n
+    glm::dvec4 v(0.0);
+    for (int c = 0; c < components && c < 4; ++c) v[c] = values[n * components + c];
+    return v;
+  }
+};
+
+// Reads any accessor of the expected type (TINYGLTF_TYPE_*): byteStride, normalized integers,
+// matrix column padding, a missing buffer view (zeros) and sparse substitution, every range
+// checked. Messages start with "accessor N".
+Result<AccessorValues> readAccessor(const tinygltf::Model& model, int index, int expected_type);
 
 // A node's local transform as translation, rotation and scale (glTF applies T * R * S).
 struct Trs {

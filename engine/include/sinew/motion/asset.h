@@ -40,6 +40,7 @@ struct GltfSource {
   bool binary = true;               // .glb
   std::filesystem::path directory;  // for .gltf files that reference external buffers/images
   std::vector<int> node_of_joint;   // (skeleton joints) the glTF node index of each joint
+  int skin_count = 0;               // skins in the file (the first one is imported)
 };
 
 struct ImportOptions {
