@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   sinew::app::addInfoCommand(app, exit_code);
   sinew::app::addConvertCommand(app, exit_code);
+  sinew::app::addAnalyzeCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

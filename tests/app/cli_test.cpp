@@ -88,6 +88,43 @@ TEST(CliTest, ConvertRefusesUnknownFormatsAndKeepsTheOldFile) {
   EXPECT_NE(fbx.err.find("unknown file type '.fbx'"), std::string::npos) << fbx.err;
 }
 
+TEST(CliTest, AnalyzeReportsStrideErrorsAndJson) {
+  test::TempDir dir;
+  const auto json_path = dir / "walk.json";
+  const test::CommandResult result =
+      test::runSinew("analyze " + walk() + " --json " + test::quote(json_path));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("stride     1.06"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("LeftUpLeg"), std::string::npos);
+  const nlohmann::json json = nlohmann::json::parse(test::readText(json_path));
+  // The bundled walk is authored at exactly 32 frames per 30 fps stride.
+  EXPECT_NEAR(json["period_s"].get<double>(), 32.0 / 30.0, 0.01);
+  EXPECT_TRUE(json["stride_found"].get<bool>());
+  EXPECT_GE(json["strides"].get<int>(), 1);
+  EXPECT_NEAR(json["travel_velocity_m_s"][2].get<double>(), 1.30, 0.01);
+  for (const char* key : {"rot_err_deg_rms", "rot_err_deg_max", "pos_err_cm_mean", "pos_err_cm_max"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  bool found = false;
+  for (const auto& joint : json["joints"]) {
+    for (const char* key : {"name", "k", "rot_err_deg_rms", "rot_err_deg_max", "pos_err_cm_mean",
+                            "pos_err_cm_max"}) {
+      EXPECT_TRUE(joint.contains(key)) << key;
+    }
+    if (joint["name"] == "LeftUpLeg") {
+      found = true;
+      EXPECT_EQ(joint["k"], 5);
+      ASSERT_EQ(joint["channels"].size(), 3u);
+      EXPECT_EQ(joint["channels"][0]["harmonics"].size(), 5u);
+    }
+  }
+  EXPECT_TRUE(found);
+  const test::CommandResult bad = test::runSinew("analyze " + walk() + " --harmonics lots");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--harmonics: expected a whole number or 'auto'"), std::string::npos)
+      << bad.err;
+}
+
 TEST(CliTest, InfoAndConvertWorkOnEveryRealFile) {
   SINEW_REQUIRE_SHARED_DATA();
   test::TempDir dir;

@@ -1,0 +1,36 @@
+// The harmonic model of one periodic channel: theta(t) = A + sum_n B_n sin(n omega0 t + D_n),
+// t in seconds from the start of the analysed window. fitHarmonics measures it with a DFT
+// (KissFFT, double precision) of samples that cover whole periods.
+#pragma once
+
+#include <span>
+#include <vector>
+
+namespace sinew::spectral {
+
+struct Harmonic {
+  int n = 1;               // harmonic number: frequency n * omega0
+  double amplitude = 0.0;  // B_n >= 0, in the channel's unit
+  double phase = 0.0;      // D_n, radians in (-pi, pi]
+};
+
+struct HarmonicSeries {
+  double mean = 0.0;                // A, in the channel's unit
+  std::vector<Harmonic> harmonics;  // n = 1, 2, ... ascending (the full measured spectrum)
+
+  // The K harmonics of largest amplitude (all when k >= size), in descending amplitude.
+  std::vector<Harmonic> strongest(int k) const;
+};
+
+// Evaluates A + sum B sin(n omega0 t + D) over `terms`.
+double evaluate(double mean, std::span<const Harmonic> terms, double omega0, double t);
+
+// Measures the series of `samples`, which cover exactly `periods` whole periods at even spacing
+// (sample i at t = i * period * periods / size). Harmonic n sits at DFT bin n * periods; bins
+// between them (what changes from one period to the next) are not part of the model and are
+// returned as `aperiodic_energy` (sum of squared amplitudes, the channel's unit squared).
+// Precondition: samples.size() even and >= 4, periods >= 1.
+HarmonicSeries fitHarmonics(std::span<const double> samples, int periods,
+                            double* aperiodic_energy = nullptr);
+
+}  // namespace sinew::spectral

@@ -1,0 +1,404 @@
+#include "sinew/spectral/analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace sinew::spectral {
+namespace {
+
+int nextPowerOfTwo(int n) {
+  int p = 1;
+  while (p < n) p *= 2;
+  return p;
+}
+
+// Catmull-Rom through the frame values, clamped at the ends; `frame` is fractional.
+double cubicAt(const std::vector<double>& values, double frame) {
+  const int last = static_cast<int>(values.size()) - 1;
+  if (frame <= 0.0) return values[0];
+  if (frame >= last) return values[last];
+  const int i = static_cast<int>(frame);
+  const double u = frame - i;
+  const double p0 = values[std::max(i - 1, 0)];
+  const double p1 = values[i];
+  const double p2 = values[std::min(i + 1, last)];
+  const double p3 = values[std::min(i + 2, last)];
+  return p1 + 0.5 * u * (p2 - p0 + u * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 +
+                                        u * (3.0 * (p1 - p2) + p3 - p0)));
+}
+
+// Frames whose time lies in [start, start + length): the frames the model describes.
+std::pair<int, int> windowRange(const MotionSpectrum& spectrum) {
+  const double dt = spectrum.signals.frame_time;
+  const double start = spectrum.window.start_s;
+  const double end = start + spectrum.window.strides * spectrum.period_s;
+  const int first = static_cast<int>(std::ceil(start / dt - 1e-9));
+  int last = static_cast<int>(std::ceil(end / dt - 1e-9)) - 1;
+  last = std::min(last, spectrum.signals.frame_count - 1);
+  return {first, std::max(first, last)};
+}
+
+// The point (a joint, or its End Site) and frame where the model is furthest from the original,
+// with its error in centimetres.
+struct WorstPoint {
+  int joint = -1;
+  bool end_site = false;
+  int frame = 0;
+  double cm = 0.0;
+};
+
+WorstPoint worstPoint(const motion::Skeleton& skeleton, const motion::Clip& original,
+                      const motion::Clip& model) {
+  const int joints = skeleton.jointCount();
+  std::vector<glm::dmat4> a(joints);
+  std::vector<glm::dmat4> b(joints);
+  WorstPoint worst;
+  for (int f = 0; f < std::min(original.frame_count, model.frame_count); ++f) {
+    motion::worldTransforms(skeleton, original, f, a);
+    motion::worldTransforms(skeleton, model, f, b);
+    for (int j = 0; j < joints; ++j) {
+      const double cm = 100.0 * glm::length(glm::dvec3(a[j][3]) - glm::dvec3(b[j][3]));
+      if (cm > worst.cm) worst = {j, false, f, cm};
+      if (skeleton.end_sites[j]) {
+        const glm::dvec4 site(*skeleton.end_sites[j], 1.0);
+        const double end_cm = 100.0 * glm::length(glm::dvec3(a[j] * site) - glm::dvec3(b[j] * site));
+        if (end_cm > worst.cm) worst = {j, true, f, end_cm};
+      }
+    }
+  }
+  return worst;
+}
+
+// The fewest harmonics per joint keeping the worst position error under the tolerance. Greedy:
+// from the mean pose, find the worst point and give one more harmonic to the joint above it whose
+// next harmonic moves that point furthest (rotation amplitude x distance, or translation
+// amplitude); then take back every harmonic the tolerance does not need.
+std::vector<int> autoHarmonics(const motion::Skeleton& skeleton, const motion::Clip& original,
+                               const MotionSpectrum& spectrum, double tolerance_cm) {
+  const int joints = skeleton.jointCount();
+  std::vector<int> k(joints, 0);
+  // Per joint, per channel, the harmonics strongest first.
+  std::vector<std::vector<std::vector<Harmonic>>> ranked(joints);
+  std::vector<bool> translates(joints, false);
+  for (size_t c = 0; c < spectrum.series.size(); ++c) {
+    const SignalChannel& channel = spectrum.signals.channels[c];
+    ranked[channel.joint].push_back(spectrum.series[c].strongest(1 << 30));
+    translates[channel.joint] = translates[channel.joint] || channel.kind == SignalKind::kTranslation;
+  }
+  const auto nextAmplitude = [&](int j) {
+    double sum = 0.0;
+    for (const auto& channel : ranked[j]) {
+      if (k[j] < static_cast<int>(channel.size())) sum += channel[k[j]].amplitude;
+    }
+    return sum;
+  };
+  const motion::Clip frames = windowFrames(original, spectrum);
+  std::vector<glm::dmat4> world(joints);
+  while (true) {
+    const WorstPoint worst = worstPoint(skeleton, frames, reconstruct(skeleton, spectrum, k));
+    if (worst.cm <= tolerance_cm) break;
+    motion::worldTransforms(skeleton, frames, worst.frame, world);
+    const glm::dvec3 point =
+        worst.end_site ? glm::dvec3(world[worst.joint] * glm::dvec4(*skeleton.end_sites[worst.joint], 1.0))
+                       : glm::dvec3(world[worst.joint][3]);
+    int pick = -1;
+    double gain = 0.0;
+    // A joint's rotation moves its End Site and everything below, not itself; its translation
+    // moves itself too.
+    for (int j = worst.end_site ? worst.joint : worst.joint; j != motion::kNoParent;
+         j = skeleton.parents[j]) {
+      const bool rotation_moves_point = worst.end_site || j != worst.joint;
+      const double lever = glm::length(point - glm::dvec3(world[j][3]));
+      double moved = 0.0;
+      if (rotation_moves_point || translates[j]) {
+        moved = nextAmplitude(j) * (translates[j] ? 1.0 : lever);
+      }
+      if (moved > gain) {
+        gain = moved;
+        pick = j;
+      }
+    }
+    if (pick < 0) break;  // nothing left to add above the worst point: the window's floor
+    ++k[pick];
+  }
+  // Take back what is not needed, the most generous joints first.
+  std::vector<int> order(joints);
+  for (int j = 0; j < joints; ++j) order[j] = j;
+  std::sort(order.begin(), order.end(), [&k](int a, int b) { return k[a] > k[b]; });
+  for (int j : order) {
+    while (k[j] > 0) {
+      --k[j];
+      if (worstPoint(skeleton, frames, reconstruct(skeleton, spectrum, k)).cm > tolerance_cm) {
+        ++k[j];
+        break;
+      }
+    }
+  }
+  return k;
+}
+
+// Samples every channel at L = strides x M even times over the window and measures its
+// harmonics. Translations lose their linear trend over the window (travel), which makes the rest
+// periodic.
+void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window) {
+  const MotionSignals& signals = spectrum.signals;
+  const double dt = signals.frame_time;
+  spectrum.window = window;
+  spectrum.period_s = window.period_s;
+  spectrum.omega0 = 2.0 * std::numbers::pi / spectrum.period_s;
+  spectrum.samples_per_stride =
+      std::max(16, nextPowerOfTwo(static_cast<int>(std::ceil(spectrum.period_s / dt - 1e-9))));
+  const int samples = window.strides * spectrum.samples_per_stride;
+  const double length = window.strides * spectrum.period_s;
+  const double start_frame = window.start_s / dt;
+  std::vector<double> sampled(samples);
+  spectrum.series.clear();
+  spectrum.aperiodic_energy.clear();
+  spectrum.trends.clear();
+  spectrum.travel_velocity = glm::dvec3(0.0);
+  for (const SignalChannel& channel : signals.channels) {
+    double slope = 0.0;
+    if (channel.kind == SignalKind::kTranslation) {
+      slope = (cubicAt(channel.values, start_frame + length / dt) -
+               cubicAt(channel.values, start_frame)) / length;
+      if (channel.joint == signals.travel_joint) spectrum.travel_velocity[channel.axis] = slope;
+    }
+    for (int i = 0; i < samples; ++i) {
+      const double t = i * length / samples;
+      sampled[i] = cubicAt(channel.values, start_frame + t / dt) - slope * t;
+    }
+    double aperiodic = 0.0;
+    spectrum.series.push_back(fitHarmonics(sampled, window.strides, &aperiodic));
+    spectrum.aperiodic_energy.push_back(aperiodic);
+    spectrum.trends.push_back(slope);
+  }
+}
+
+}  // namespace
+
+Status AnalysisSettings::validate() const {
+  if (harmonics < 0) return Status::error("harmonics must be >= 0, got " + std::to_string(harmonics));
+  if (!(tolerance_cm > 0.0)) return Status::error("tolerance_cm must be > 0");
+  if (max_strides < 1) return Status::error("max_strides must be >= 1");
+  if (!(cycle.min_period_s > 0.0) || !(cycle.max_period_s > cycle.min_period_s)) {
+    return Status::error("stride search range must satisfy 0 < min_period_s < max_period_s");
+  }
+  for (const auto& [name, k] : joint_harmonics) {
+    if (k < 0) return Status::error("harmonics for joint '" + name + "' must be >= 0");
+  }
+  return {};
+}
+
+int MotionSpectrum::coefficientCount() const {
+  int count = 0;
+  for (size_t c = 0; c < signals.channels.size(); ++c) {
+    const int k = joint_k[signals.channels[c].joint];
+    count += 1 + 2 * std::min(k, static_cast<int>(series[c].harmonics.size()));
+  }
+  return count;
+}
+
+Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                               const AnalysisSettings& settings) {
+  if (Status status = settings.validate(); !status.ok()) return status;
+  if (Status status = clip.validate(skeleton); !status.ok()) return status;
+  if (clip.frame_count < 2) {
+    return Status::error("clip '" + clip.name + "' has one frame: nothing moves to analyse");
+  }
+  MotionSpectrum spectrum;
+  spectrum.signals = extractSignals(skeleton, clip);
+  const MotionSignals& signals = spectrum.signals;
+  const double dt = clip.frame_time;
+  const double duration = (clip.frame_count - 1) * dt;
+
+  spectrum.stride = estimateStride(signals, settings.cycle);
+  std::vector<AnalysisWindow> candidates;
+  if (spectrum.stride.found) {
+    candidates = candidateWindows(signals, spectrum.stride.period_s, settings.max_strides);
+  } else {
+    // No rhythm: the whole clip as one cycle (its seam is what it is), so there is still a
+    // spectrum to look at, and the user is told.
+    candidates = {{0.0, 1, duration, 0.0}};
+    std::ostringstream note;
+    note << spectrum.stride.message << "; the whole clip (" << duration
+         << " s) is analysed as one cycle";
+    spectrum.notes.push_back(note.str());
+  }
+  // Real strides vary: of the windows with the smallest seams, keep the one whose model
+  // describes its own frames best, where a viewer sees it: with a fixed K, the smallest mean
+  // position error; for auto, the fewest coefficients within the tolerance (then the smallest
+  // worst error).
+  double best_error = -1.0;
+  int best_count = 0;
+  std::vector<int> best_k;
+  MotionSpectrum trial = spectrum;
+  for (const AnalysisWindow& window : candidates) {
+    fitWindow(trial, window);
+    if (settings.auto_harmonics) {
+      trial.joint_k = autoHarmonics(skeleton, clip, trial, settings.tolerance_cm);
+    } else {
+      trial.joint_k.assign(skeleton.jointCount(), settings.harmonics);
+    }
+    JointError total;
+    measureError(skeleton, windowFrames(clip, trial), reconstruct(skeleton, trial),
+                 trial.signals, &total);
+    const int count = trial.coefficientCount();
+    const bool better =
+        best_error < 0.0 ||
+        (settings.auto_harmonics
+             ? std::make_pair(total.pos_err_cm_max > settings.tolerance_cm, count) <
+                   std::make_pair(best_error > settings.tolerance_cm, best_count) ||
+                   (count == best_count && total.pos_err_cm_max < best_error)
+             : total.pos_err_cm_mean < best_error);
+    if (better) {
+      best_error = settings.auto_harmonics ? total.pos_err_cm_max : total.pos_err_cm_mean;
+      best_count = count;
+      best_k = trial.joint_k;
+      fitWindow(spectrum, window);
+    }
+  }
+
+  // Harmonics kept per joint: the window's auto choice, or K with per-joint overrides.
+  if (settings.auto_harmonics) {
+    spectrum.joint_k = best_k;
+  } else {
+    spectrum.joint_k.assign(skeleton.jointCount(), settings.harmonics);
+    for (const auto& [name, k] : settings.joint_harmonics) {
+      const int joint = skeleton.findJoint(name);
+      if (joint < 0) return Status::error("harmonics set for unknown joint '" + name + "'");
+      spectrum.joint_k[joint] = k;
+    }
+  }
+  spectrum.joint_errors = measureError(skeleton, windowFrames(clip, spectrum),
+                                       reconstruct(skeleton, spectrum), signals, &spectrum.total);
+  return spectrum;
+}
+
+motion::Clip windowFrames(const motion::Clip& clip, const MotionSpectrum& spectrum) {
+  const auto [first, last] = windowRange(spectrum);
+  motion::Clip out;
+  out.name = clip.name;
+  out.frame_time = clip.frame_time;
+  out.frame_count = last - first + 1;
+  out.joint_count = clip.joint_count;
+  const auto begin = static_cast<size_t>(first) * clip.joint_count;
+  const auto end = static_cast<size_t>(last + 1) * clip.joint_count;
+  out.rotations.assign(clip.rotations.begin() + begin, clip.rotations.begin() + end);
+  out.translations.assign(clip.translations.begin() + begin, clip.translations.begin() + end);
+  if (!clip.scales.empty()) out.scales.assign(clip.scales.begin() + begin, clip.scales.begin() + end);
+  return out;
+}
+
+motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum& spectrum,
+                         const std::vector<int>& joint_k) {
+  const std::vector<int>& k = joint_k.empty() ? spectrum.joint_k : joint_k;
+  const MotionSignals& signals = spectrum.signals;
+  const auto [first, last] = windowRange(spectrum);
+  const int joints = skeleton.jointCount();
+  motion::Clip out;
+  out.name = "model";
+  out.frame_time = signals.frame_time;
+  out.frame_count = last - first + 1;
+  out.joint_count = joints;
+  out.rotations.resize(static_cast<size_t>(out.frame_count) * joints);
+  out.translations.resize(out.rotations.size());
+  if (!signals.mean_scales.empty()) {
+    for (int f = 0; f < out.frame_count; ++f) {
+      out.scales.insert(out.scales.end(), signals.mean_scales.begin(), signals.mean_scales.end());
+    }
+  }
+  // Each channel's kept terms once, then every frame.
+  std::vector<std::vector<Harmonic>> terms(signals.channels.size());
+  for (size_t c = 0; c < terms.size(); ++c) {
+    terms[c] = spectrum.series[c].strongest(k[signals.channels[c].joint]);
+  }
+  for (int f = 0; f < out.frame_count; ++f) {
+    const double t = (first + f) * signals.frame_time - spectrum.window.start_s;
+    for (int j = 0; j < joints; ++j) {
+      const size_t n = static_cast<size_t>(f) * joints + j;
+      out.rotations[n] = signals.mean_rotations[j];
+      out.translations[n] = signals.mean_translations[j];
+    }
+    glm::dvec3 vector(0.0);
+    for (size_t c = 0; c < terms.size(); ++c) {
+      const SignalChannel& channel = signals.channels[c];
+      const double value = evaluate(spectrum.series[c].mean, terms[c], spectrum.omega0, t);
+      const size_t n = static_cast<size_t>(f) * joints + channel.joint;
+      if (channel.kind == SignalKind::kRotation) {
+        vector[channel.axis] = value;
+        if (channel.axis == 2) {
+          out.rotations[n] = glm::normalize(signals.mean_rotations[channel.joint] *
+                                            fromRotationVector(vector));
+        }
+      } else {
+        // Travel continues at the window's velocity.
+        out.translations[n][channel.axis] += value + spectrum.trends[c] * t;
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<JointError> measureError(const motion::Skeleton& skeleton,
+                                     const motion::Clip& original, const motion::Clip& model,
+                                     const MotionSignals& signals, JointError* total) {
+  const int joints = skeleton.jointCount();
+  std::vector<JointError> errors(joints);
+  std::vector<double> rot_squared(joints, 0.0);
+  std::vector<double> pos_sum(joints, 0.0);
+  std::vector<bool> moving(joints, false);
+  for (const SignalChannel& channel : signals.channels) {
+    if (channel.kind == SignalKind::kRotation) moving[channel.joint] = true;
+  }
+  std::vector<glm::dmat4> a(joints);
+  std::vector<glm::dmat4> b(joints);
+  double all_rot_squared = 0.0;
+  double all_pos = 0.0;
+  long rot_count = 0;
+  long pos_count = 0;
+  JointError sum;
+  const int frames = std::min(original.frame_count, model.frame_count);
+  for (int f = 0; f < frames; ++f) {
+    motion::worldTransforms(skeleton, original, f, a);
+    motion::worldTransforms(skeleton, model, f, b);
+    for (int j = 0; j < joints; ++j) {
+      const double dot = std::min(1.0, std::abs(glm::dot(original.rotation(f, j), model.rotation(f, j))));
+      const double degrees = glm::degrees(2.0 * std::acos(dot));
+      rot_squared[j] += degrees * degrees;
+      errors[j].rot_err_deg_max = std::max(errors[j].rot_err_deg_max, degrees);
+      if (moving[j]) {
+        all_rot_squared += degrees * degrees;
+        ++rot_count;
+        sum.rot_err_deg_max = std::max(sum.rot_err_deg_max, degrees);
+      }
+      double cm = 100.0 * glm::length(glm::dvec3(a[j][3]) - glm::dvec3(b[j][3]));
+      all_pos += cm;
+      ++pos_count;
+      sum.pos_err_cm_max = std::max(sum.pos_err_cm_max, cm);
+      if (skeleton.end_sites[j]) {  // End Sites count as their joint's end effector
+        const glm::dvec4 site(*skeleton.end_sites[j], 1.0);
+        const double end_cm = 100.0 * glm::length(glm::dvec3(a[j] * site) - glm::dvec3(b[j] * site));
+        all_pos += end_cm;
+        ++pos_count;
+        sum.pos_err_cm_max = std::max(sum.pos_err_cm_max, end_cm);
+        cm = std::max(cm, end_cm);
+      }
+      pos_sum[j] += cm;
+      errors[j].pos_err_cm_max = std::max(errors[j].pos_err_cm_max, cm);
+    }
+  }
+  for (int j = 0; j < joints && frames > 0; ++j) {
+    errors[j].rot_err_deg_rms = std::sqrt(rot_squared[j] / frames);
+    errors[j].pos_err_cm_mean = pos_sum[j] / frames;
+  }
+  if (total != nullptr) {
+    sum.rot_err_deg_rms = rot_count > 0 ? std::sqrt(all_rot_squared / rot_count) : 0.0;
+    sum.pos_err_cm_mean = pos_count > 0 ? all_pos / pos_count : 0.0;
+    *total = sum;
+  }
+  return errors;
+}
+
+}  // namespace sinew::spectral

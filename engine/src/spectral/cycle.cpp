@@ -1,0 +1,209 @@
+#include "sinew/spectral/cycle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+namespace sinew::spectral {
+namespace {
+
+// The channels that carry the gait: rotation channels (translation channels include travel,
+// which never repeats) of largest variance. 24 is plenty to see a stride and keeps long clips
+// fast; every channel is used for fewer.
+constexpr size_t kMaxChannels = 24;
+
+struct Selection {
+  std::vector<const std::vector<double>*> values;
+  double variance = 0.0;  // summed over the selection
+};
+
+Selection selectChannels(const MotionSignals& signals) {
+  std::vector<std::pair<double, const std::vector<double>*>> ranked;
+  for (const SignalChannel& channel : signals.channels) {
+    if (channel.kind != SignalKind::kRotation) continue;
+    const double n = static_cast<double>(channel.values.size());
+    const double mean = std::accumulate(channel.values.begin(), channel.values.end(), 0.0) / n;
+    double variance = 0.0;
+    for (double v : channel.values) variance += (v - mean) * (v - mean) / n;
+    ranked.emplace_back(variance, &channel.values);
+  }
+  std::sort(ranked.begin(), ranked.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  if (ranked.size() > kMaxChannels) ranked.resize(kMaxChannels);
+  Selection selection;
+  for (const auto& [variance, values] : ranked) {
+    selection.values.push_back(values);
+    selection.variance += variance;
+  }
+  return selection;
+}
+
+double sampleAt(const std::vector<double>& values, double frame) {
+  const int last = static_cast<int>(values.size()) - 1;
+  if (frame <= 0.0) return values[0];
+  if (frame >= last) return values[last];
+  const int a = static_cast<int>(frame);
+  const double u = frame - a;
+  return values[a] * (1.0 - u) + values[a + 1] * u;
+}
+
+double similarity(const Selection& selection, int frames, double lag) {
+  if (selection.variance <= 0.0 || lag >= frames - 1) return 0.0;
+  const int count = static_cast<int>(std::floor(frames - 1 - lag)) + 1;
+  double squared = 0.0;
+  for (const std::vector<double>* values : selection.values) {
+    for (int f = 0; f < count; ++f) {
+      const double d = sampleAt(*values, f + lag) - (*values)[f];
+      squared += d * d;
+    }
+  }
+  return 1.0 - squared / count / (2.0 * selection.variance);
+}
+
+// Sub-frame peak position from three samples around an integer maximum.
+double refinePeak(double before, double at, double after) {
+  const double curvature = before - 2.0 * at + after;
+  if (curvature >= 0.0) return 0.0;
+  return std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5);
+}
+
+}  // namespace
+
+double poseSimilarity(const MotionSignals& signals, double lag_frames) {
+  return similarity(selectChannels(signals), signals.frame_count, lag_frames);
+}
+
+StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings) {
+  StrideEstimate estimate;
+  const Selection selection = selectChannels(signals);
+  const int frames = signals.frame_count;
+  const double dt = signals.frame_time;
+  if (selection.values.empty() || selection.variance < 1e-10) {
+    estimate.message = "no stride found: no joint rotates";
+    return estimate;
+  }
+  const int min_lag = std::max(2, static_cast<int>(std::ceil(settings.min_period_s / dt)));
+  const int max_lag = std::min(frames - 2, static_cast<int>(std::floor(settings.max_period_s / dt)));
+  if (max_lag < min_lag) {
+    std::ostringstream why;
+    if ((frames - 1) * dt < settings.min_period_s) {
+      why << "no stride found: the clip (" << (frames - 1) * dt << " s) is shorter than the "
+          << "shortest stride looked for (" << settings.min_period_s << " s)";
+    } else {
+      why << "no stride found: " << frames << " frames are too few to see the pose repeat";
+    }
+    estimate.message = why.str();
+    return estimate;
+  }
+  std::vector<double> sim(max_lag + 2, 0.0);
+  for (int lag = std::max(1, min_lag - 1); lag <= max_lag + 1 && lag < frames - 1; ++lag) {
+    sim[lag] = similarity(selection, frames, lag);
+  }
+  // Local maxima above the threshold; the first that is nearly as strong as the best wins (the
+  // best may sit at two or three strides).
+  double best = 0.0;
+  std::vector<int> peaks;
+  for (int lag = min_lag; lag <= max_lag; ++lag) {
+    const bool rising = sim[lag] >= sim[lag - 1];
+    const bool falling = lag + 1 > max_lag || sim[lag] >= sim[lag + 1];
+    if (rising && falling && sim[lag] >= settings.min_similarity) {
+      peaks.push_back(lag);
+      best = std::max(best, sim[lag]);
+    }
+  }
+  if (peaks.empty()) {
+    double highest = 0.0;
+    for (int lag = min_lag; lag <= max_lag; ++lag) highest = std::max(highest, sim[lag]);
+    std::ostringstream why;
+    why << "no stride found: the pose never repeats between " << min_lag * dt << " and "
+        << max_lag * dt << " s (best similarity " << highest << ", needs "
+        << settings.min_similarity << ")";
+    estimate.message = why.str();
+    return estimate;
+  }
+  int chosen = peaks.back();
+  for (int lag : peaks) {
+    if (sim[lag] >= best - 0.05) {
+      chosen = lag;
+      break;
+    }
+  }
+  const double offset = chosen + 1 <= max_lag + 1 && chosen + 1 < static_cast<int>(sim.size())
+                            ? refinePeak(sim[chosen - 1], sim[chosen], sim[chosen + 1])
+                            : 0.0;
+  double period = (chosen + offset) * dt;
+  // Several strides in the clip measure the period more finely: refine on the furthest repeat.
+  for (int k = 2;; ++k) {
+    const int around = static_cast<int>(std::lround(k * period / dt));
+    if (around + 2 >= frames - 1) break;
+    int at = around;
+    double value = similarity(selection, frames, around);
+    for (int lag = around - 2; lag <= around + 2; ++lag) {
+      const double s = similarity(selection, frames, lag);
+      if (s > value) {
+        value = s;
+        at = lag;
+      }
+    }
+    if (value < settings.min_similarity) break;
+    const double refined = at + refinePeak(similarity(selection, frames, at - 1), value,
+                                           similarity(selection, frames, at + 1));
+    period = refined * dt / k;
+  }
+  estimate.found = true;
+  estimate.period_s = period;
+  estimate.similarity = sim[chosen];
+  return estimate;
+}
+
+std::vector<AnalysisWindow> candidateWindows(const MotionSignals& signals, double period_s,
+                                             int max_strides, double period_slack, int count) {
+  const double dt = signals.frame_time;
+  const double duration = (signals.frame_count - 1) * dt;
+  const Selection selection = selectChannels(signals);
+  const auto& rotations = selection.values;
+  // Stride lengths tried: quarter-frame steps across the slack (just the estimate without it).
+  const int steps = static_cast<int>(std::ceil(period_slack * period_s / (0.25 * dt)));
+  std::vector<AnalysisWindow> all;
+  for (int strides = 1; strides <= std::max(1, max_strides); ++strides) {
+    for (int step = -steps; step <= steps; ++step) {
+      const double period = period_s + step * 0.25 * dt;
+      const double length = strides * period;
+      if (length > duration + 1e-9) continue;
+      const int starts = static_cast<int>(std::floor((duration - length) / dt + 1e-9)) + 1;
+      // Value and slope must both meet: a jump in either leaks into every harmonic. Slopes are
+      // scaled to radians by the time a fifth harmonic takes to turn a radian.
+      const double slope_scale = period / (2.0 * std::numbers::pi * 5.0) / (2.0 * dt);
+      for (int s = 0; s < starts; ++s) {
+        const double end = s + length / dt;
+        double squared = 0.0;
+        for (const std::vector<double>* values : rotations) {
+          const double d = sampleAt(*values, end) - (*values)[s];
+          const double slope_end = sampleAt(*values, end + 1.0) - sampleAt(*values, end - 1.0);
+          const double slope_start = sampleAt(*values, s + 1.0) - sampleAt(*values, s - 1.0);
+          const double v = (slope_end - slope_start) * slope_scale;
+          squared += d * d + v * v;
+        }
+        const double seam = rotations.empty() ? 0.0 : std::sqrt(squared / rotations.size());
+        all.push_back({s * dt, strides, period, seam});
+      }
+    }
+  }
+  if (all.empty()) return {{0.0, 1, period_s, 0.0}};  // shorter than a stride: take it as it is
+  std::sort(all.begin(), all.end(),
+            [](const AnalysisWindow& a, const AnalysisWindow& b) { return a.seam < b.seam; });
+  std::vector<AnalysisWindow> chosen;
+  for (const AnalysisWindow& window : all) {
+    bool distinct = true;
+    for (const AnalysisWindow& other : chosen) {
+      distinct = distinct && std::abs(window.start_s - other.start_s) >= 2.0 * dt - 1e-9;
+    }
+    if (distinct) chosen.push_back(window);
+    if (static_cast<int>(chosen.size()) >= count) break;
+  }
+  return chosen;
+}
+
+}  // namespace sinew::spectral
