@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   sinew::app::addInfoCommand(app, exit_code);
   sinew::app::addConvertCommand(app, exit_code);
   sinew::app::addAnalyzeCommand(app, exit_code);
+  sinew::app::addStyleCommand(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

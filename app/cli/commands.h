@@ -30,5 +30,6 @@ int fail(const std::string& message);  // prints "sinew: message" to stderr, ret
 void addInfoCommand(CLI::App& app, int& exit_code);
 void addConvertCommand(CLI::App& app, int& exit_code);
 void addAnalyzeCommand(CLI::App& app, int& exit_code);
+void addStyleCommand(CLI::App& app, int& exit_code);
 
 }  // namespace sinew::app

@@ -125,6 +125,38 @@ TEST(CliTest, AnalyzeReportsStrideErrorsAndJson) {
       << bad.err;
 }
 
+TEST(CliTest, StyleTransfersAndMeasures) {
+  SINEW_REQUIRE_SHARED_DATA();
+  test::TempDir dir;
+  const auto bandai = [](const std::string& what) {
+    return test::quote(test::sharedData() / "bvh" / ("bandai_dataset-1_" + what + "_001.bvh"));
+  };
+  const test::CommandResult transfer = test::runSinew(
+      "style --neutral " + bandai("walk_normal") + " --styled " + bandai("walk_tired") +
+      " --label tired --strides 2 -o " + test::quote(dir / "tired.bvh"));
+  ASSERT_EQ(transfer.exit_code, 0) << transfer.err;
+  EXPECT_NE(transfer.out.find("style 'tired' (weight 1.00)"), std::string::npos) << transfer.out;
+  const nlohmann::json info =
+      nlohmann::json::parse(test::runSinew("info --json " + test::quote(dir / "tired.bvh")).out);
+  EXPECT_NEAR(info["fps"].get<double>(), 30.0, 1e-3);
+  EXPECT_EQ(info["joint_count"], 22);
+  // Two tired strides of about 1.22 s, at 30 fps, closing the loop.
+  EXPECT_NEAR(info["frames"].get<int>(), 2 * 1.219 * 30 + 1, 2);
+
+  const test::CommandResult measure = test::runSinew(
+      "style --measure " + bandai("run_tired") + " --library normal=" + bandai("walk_normal") +
+      " tired=" + bandai("walk_tired") + " --json " + test::quote(dir / "scores.json"));
+  ASSERT_EQ(measure.exit_code, 0) << measure.err;
+  const nlohmann::json scores = nlohmann::json::parse(test::readText(dir / "scores.json"));
+  EXPECT_EQ(scores["closest"], "tired");
+  EXPECT_GT(scores["scores"]["tired"].get<double>(), scores["scores"]["normal"].get<double>());
+
+  const test::CommandResult bad = test::runSinew("style --neutral " + bandai("walk_normal") +
+                                                 " --styled " + bandai("walk_tired") +
+                                                 " --weight 3 -o x.bvh");
+  EXPECT_NE(bad.exit_code, 0);
+}
+
 TEST(CliTest, InfoAndConvertWorkOnEveryRealFile) {
   SINEW_REQUIRE_SHARED_DATA();
   test::TempDir dir;

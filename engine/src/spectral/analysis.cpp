@@ -364,8 +364,7 @@ std::vector<JointError> measureError(const motion::Skeleton& skeleton,
     motion::worldTransforms(skeleton, original, f, a);
     motion::worldTransforms(skeleton, model, f, b);
     for (int j = 0; j < joints; ++j) {
-      const double dot = std::min(1.0, std::abs(glm::dot(original.rotation(f, j), model.rotation(f, j))));
-      const double degrees = glm::degrees(2.0 * std::acos(dot));
+      const double degrees = glm::degrees(angleBetween(original.rotation(f, j), model.rotation(f, j)));
       rot_squared[j] += degrees * degrees;
       errors[j].rot_err_deg_max = std::max(errors[j].rot_err_deg_max, degrees);
       if (moving[j]) {

@@ -5,6 +5,11 @@
 
 namespace sinew::spectral {
 
+double angleBetween(const glm::dquat& a, const glm::dquat& b) {
+  const glm::dquat d = glm::conjugate(a) * b;
+  return 2.0 * std::atan2(glm::length(glm::dvec3(d.x, d.y, d.z)), std::abs(d.w));
+}
+
 glm::dvec3 rotationVector(const glm::dquat& q) {
   const glm::dvec3 xyz(q.x, q.y, q.z);
   const double s = glm::length(xyz);

@@ -43,6 +43,9 @@ struct MotionSignals {
 MotionSignals extractSignals(const motion::Skeleton& skeleton, const motion::Clip& clip,
                              double min_rotation_rad = 1e-4, double min_translation_m = 1e-4);
 
+// The angle between two rotations, radians in [0, pi]; exact for tiny angles (acos is not).
+double angleBetween(const glm::dquat& a, const glm::dquat& b);
+
 // The rotation vector (axis * angle, radians) of a unit quaternion, and back.
 glm::dvec3 rotationVector(const glm::dquat& q);
 glm::dquat fromRotationVector(const glm::dvec3& v);

@@ -1,0 +1,67 @@
+// Style as a difference in harmonic space between two clips of the same action and skeleton
+// (neutral and styled, strides aligned): per joint a posture offset, per channel a mean offset and
+// per harmonic an amplitude ratio and phase shift, plus tempo and speed ratios. Applying a style
+// with weight w: 0 changes nothing, 1 gives the styled clip's character, > 1 exaggerates, < 0
+// removes. Styles measured on one clip transfer to any clip of the same skeleton.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sinew/core/status.h"
+#include "sinew/motion/skeleton.h"
+#include "sinew/spectral/target_motion.h"
+
+namespace sinew::spectral {
+
+struct HarmonicStyle {
+  int n = 1;                  // harmonic number
+  double log_ratio = 0.0;     // ln(B_styled / B_neutral), clamped to +-ln 8
+  double phase_shift = 0.0;   // D_styled - D_neutral, radians in (-pi, pi]
+};
+
+struct ChannelStyle {
+  int joint = 0;
+  SignalKind kind = SignalKind::kRotation;
+  int axis = 0;
+  double mean_offset = 0.0;            // A_styled - A_neutral (after the posture offset)
+  std::vector<HarmonicStyle> harmonics;
+};
+
+struct StyleVector {
+  std::string label;                   // "tired", "happy", ...
+  int joint_count = 0;                 // the skeleton it was measured on
+  double log_tempo = 0.0;              // ln(omega_styled / omega_neutral)
+  double log_speed = 0.0;              // ln(|travel_styled| / |travel_neutral|), 0 when in place
+  std::vector<glm::dvec3> posture;     // (joints) rotation vector of neutral^-1 * styled base
+  std::vector<ChannelStyle> channels;
+};
+
+// Puts the phase origin where `joint`'s `axis` rotation channel's fundamental has phase 0, so
+// clips of one skeleton start their strides at the same gait event.
+void alignPhase(TargetMotion& target, int joint, int axis);
+// The rotation channel with the largest fundamental: the one to align clips of a skeleton on.
+std::pair<int, int> phaseReference(const TargetMotion& target);
+
+// The style taking `neutral` to `styled` (same skeleton; both aligned with alignPhase on the same
+// channel). Harmonics too weak in the neutral (under 2% of its channel's strongest) keep ratio 1.
+Result<StyleVector> measureStyle(const TargetMotion& neutral, const TargetMotion& styled,
+                                 const std::string& label);
+
+// `target` with every style applied at its weight (weights add in log space), w in [-1, 2].
+Result<TargetMotion> applyStyles(const TargetMotion& target,
+                                 const std::vector<std::pair<const StyleVector*, double>>& styles);
+
+// Style measurement: how close `clip` is to each labelled library clip (clips of one skeleton) in
+// what a style changes and an action does not: the attitude of the trunk and head (the posture
+// of every spine and head joint below the pelvis), compared as RMS angles. Scores in [0, 1],
+// summing to 1.
+struct StyleScores {
+  std::string closest;
+  std::vector<std::pair<std::string, double>> scores;  // label -> score, library order
+};
+Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMotion& clip,
+                               const std::vector<std::pair<std::string, TargetMotion>>& library);
+
+}  // namespace sinew::spectral

@@ -1,0 +1,257 @@
+#include "sinew/spectral/style.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <numbers>
+
+#include "sinew/spectral/bands.h"
+
+namespace sinew::spectral {
+namespace {
+
+constexpr double kMaxLogRatio = 2.0794415416798357;  // ln 8
+constexpr double kWeakFraction = 0.02;  // harmonics under 2% of the channel's strongest
+
+const ChannelModel* findChannel(const TargetMotion& target, int joint, SignalKind kind, int axis) {
+  for (const ChannelModel& channel : target.channels) {
+    if (channel.joint == joint && channel.kind == kind && channel.axis == axis) return &channel;
+  }
+  return nullptr;
+}
+
+std::complex<double> coefficient(const ChannelModel& channel, int n) {
+  std::complex<double> sum = 0.0;
+  for (const Harmonic& h : channel.terms) {
+    if (h.n == n) sum += std::polar(h.amplitude, h.phase);
+  }
+  return sum;
+}
+
+// Travel speed: the largest translation trend of any joint, m/s.
+double speed(const TargetMotion& target) {
+  std::map<int, double> squared;
+  for (const ChannelModel& channel : target.channels) {
+    if (channel.kind == SignalKind::kTranslation) squared[channel.joint] += channel.trend * channel.trend;
+  }
+  double fastest = 0.0;
+  for (const auto& [joint, value] : squared) fastest = std::max(fastest, std::sqrt(value));
+  return fastest;
+}
+
+glm::dquat chordalMean(const std::vector<glm::dquat>& rotations) {
+  glm::dvec4 sum(0.0);
+  for (const glm::dquat& q : rotations) {
+    const double sign = glm::dot(q, rotations.front()) < 0.0 ? -1.0 : 1.0;
+    sum += sign * glm::dvec4(q.x, q.y, q.z, q.w);
+  }
+  const double norm = glm::length(sum);
+  return norm > 0.0 ? glm::dquat(sum.w / norm, sum.x / norm, sum.y / norm, sum.z / norm)
+                    : rotations.front();
+}
+
+}  // namespace
+
+std::pair<int, int> phaseReference(const TargetMotion& target) {
+  std::pair<int, int> best{-1, 0};
+  double strongest = 0.0;
+  for (const ChannelModel& channel : target.channels) {
+    if (channel.kind != SignalKind::kRotation) continue;
+    const double fundamental = std::abs(coefficient(channel, 1));
+    if (fundamental > strongest) {
+      strongest = fundamental;
+      best = {channel.joint, channel.axis};
+    }
+  }
+  return best;
+}
+
+void alignPhase(TargetMotion& target, int joint, int axis) {
+  const ChannelModel* channel = findChannel(target, joint, SignalKind::kRotation, axis);
+  if (channel == nullptr) return;
+  const std::complex<double> fundamental = coefficient(*channel, 1);
+  if (std::abs(fundamental) <= 0.0) return;
+  shiftPhase(target, -std::arg(fundamental) / target.omega0);
+}
+
+Result<StyleVector> measureStyle(const TargetMotion& neutral_in, const TargetMotion& styled_in,
+                                 const std::string& label) {
+  if (neutral_in.jointCount() != styled_in.jointCount()) {
+    return Status::error("style '" + label + "': the clips have " +
+                         std::to_string(neutral_in.jointCount()) + " and " +
+                         std::to_string(styled_in.jointCount()) +
+                         " joints; a style needs two clips of one skeleton");
+  }
+  // Strides aligned: both start where the neutral's strongest channel starts its cycle.
+  TargetMotion neutral = neutral_in;
+  TargetMotion styled = styled_in;
+  const auto [joint, axis] = phaseReference(neutral);
+  if (joint < 0) return Status::error("style '" + label + "': the neutral clip does not move");
+  alignPhase(neutral, joint, axis);
+  alignPhase(styled, joint, axis);
+
+  StyleVector style;
+  style.label = label;
+  style.joint_count = neutral.jointCount();
+  style.log_tempo = std::log(styled.omega0 / neutral.omega0);
+  const double v_neutral = speed(neutral);
+  const double v_styled = speed(styled);
+  style.log_speed = v_neutral > 0.01 && v_styled > 0.01 ? std::log(v_styled / v_neutral) : 0.0;
+  for (int j = 0; j < neutral.jointCount(); ++j) {
+    style.posture.push_back(
+        rotationVector(glm::conjugate(neutral.base_rotations[j]) * styled.base_rotations[j]));
+  }
+  for (const ChannelModel& n_channel : neutral.channels) {
+    const ChannelModel* s_channel =
+        findChannel(styled, n_channel.joint, n_channel.kind, n_channel.axis);
+    if (s_channel == nullptr) continue;
+    ChannelStyle channel{n_channel.joint, n_channel.kind, n_channel.axis,
+                         s_channel->mean - n_channel.mean, {}};
+    double strongest = 0.0;
+    int highest = 0;
+    for (const Harmonic& h : n_channel.terms) {
+      strongest = std::max(strongest, h.amplitude);
+      highest = std::max(highest, h.n);
+    }
+    for (const Harmonic& h : s_channel->terms) highest = std::max(highest, h.n);
+    for (int n = 1; n <= highest; ++n) {
+      const std::complex<double> zn = coefficient(n_channel, n);
+      const std::complex<double> zs = coefficient(*s_channel, n);
+      if (std::abs(zn) < kWeakFraction * strongest || std::abs(zs) <= 0.0) continue;
+      channel.harmonics.push_back(
+          {n, std::clamp(std::log(std::abs(zs) / std::abs(zn)), -kMaxLogRatio, kMaxLogRatio),
+           std::remainder(std::arg(zs) - std::arg(zn), 2.0 * std::numbers::pi)});
+    }
+    style.channels.push_back(std::move(channel));
+  }
+  return style;
+}
+
+Result<TargetMotion> applyStyles(const TargetMotion& target,
+                                 const std::vector<std::pair<const StyleVector*, double>>& styles) {
+  TargetMotion out = target;
+  double log_tempo = 0.0;
+  double log_speed = 0.0;
+  std::vector<glm::dvec3> posture(target.jointCount(), glm::dvec3(0.0));
+  // (joint, kind, axis) -> mean offset, and per n the summed log ratio and phase shift.
+  std::map<std::tuple<int, int, int>, double> mean_offset;
+  std::map<std::tuple<int, int, int, int>, std::pair<double, double>> harmonic;
+  for (const auto& [style, weight] : styles) {
+    if (weight == 0.0) continue;  // exactly no change, not a change of rounding size
+    if (!(weight >= -1.0 && weight <= 2.0)) {
+      return Status::error("style '" + style->label + "': weight " + std::to_string(weight) +
+                           " is outside [-1, 2]");
+    }
+    if (style->joint_count != target.jointCount()) {
+      return Status::error("style '" + style->label + "' was measured on a skeleton of " +
+                           std::to_string(style->joint_count) + " joints; this clip has " +
+                           std::to_string(target.jointCount()));
+    }
+    log_tempo += weight * style->log_tempo;
+    log_speed += weight * style->log_speed;
+    for (int j = 0; j < target.jointCount(); ++j) posture[j] += weight * style->posture[j];
+    for (const ChannelStyle& channel : style->channels) {
+      const int kind = static_cast<int>(channel.kind);
+      mean_offset[{channel.joint, kind, channel.axis}] += weight * channel.mean_offset;
+      for (const HarmonicStyle& h : channel.harmonics) {
+        auto& [ratio, shift] = harmonic[{channel.joint, kind, channel.axis, h.n}];
+        ratio += weight * h.log_ratio;
+        shift += weight * h.phase_shift;
+      }
+    }
+  }
+  if (mean_offset.empty() && harmonic.empty() && log_tempo == 0.0 && log_speed == 0.0) return out;
+  out.omega0 = target.omega0 * std::exp(log_tempo);
+  for (int j = 0; j < out.jointCount(); ++j) {
+    out.base_rotations[j] = glm::normalize(out.base_rotations[j] * fromRotationVector(posture[j]));
+  }
+  for (ChannelModel& channel : out.channels) {
+    const int kind = static_cast<int>(channel.kind);
+    if (const auto it = mean_offset.find({channel.joint, kind, channel.axis}); it != mean_offset.end()) {
+      channel.mean += it->second;
+    }
+    if (channel.kind == SignalKind::kTranslation) channel.trend *= std::exp(log_speed);
+    for (Harmonic& h : channel.terms) {
+      const auto it = harmonic.find({channel.joint, kind, channel.axis, h.n});
+      if (it == harmonic.end()) continue;
+      h.amplitude *= std::exp(it->second.first);
+      h.phase = std::remainder(h.phase + it->second.second, 2.0 * std::numbers::pi);
+    }
+  }
+  return out;
+}
+
+Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMotion& clip,
+                               const std::vector<std::pair<std::string, TargetMotion>>& library) {
+  if (library.empty()) return Status::error("style library is empty");
+  const int joints = clip.jointCount();
+  for (const auto& [label, entry] : library) {
+    if (entry.jointCount() != joints) {
+      return Status::error("style library entry '" + label + "' has " +
+                           std::to_string(entry.jointCount()) + " joints; the clip has " +
+                           std::to_string(joints));
+    }
+  }
+  // Features: the attitude of the trunk and head (each spine and head joint's posture relative to
+  // the library's mean, radians). Measured on the Bandai set, that is what a style changes and an
+  // action does not: running bends knees and elbows and swings arms harder than walking whatever
+  // the mood, while a tired walk and a tired run both fold the chest forward (+20 and +12
+  // degrees against -5 and 0 for the normal ones).
+  // The pelvis (the first joint that branches) and the joints above it carry the global heading,
+  // which says where the actor walked, not how: they are left out.
+  const std::vector<JointGroup> groups = jointGroups(skeleton);
+  std::vector<int> children(joints, 0);
+  for (int j = 0; j < joints; ++j) {
+    if (skeleton.parents[j] != motion::kNoParent) ++children[skeleton.parents[j]];
+  }
+  int pelvis = 0;
+  while (pelvis + 1 < joints && children[pelvis] == 1) ++pelvis;
+  std::vector<bool> above_pelvis(joints, false);
+  for (int j = pelvis; j != motion::kNoParent; j = skeleton.parents[j]) above_pelvis[j] = true;
+  std::vector<glm::dquat> mean_posture(joints);
+  for (int j = 0; j < joints; ++j) {
+    std::vector<glm::dquat> bases;
+    for (const auto& [label, entry] : library) bases.push_back(entry.base_rotations[j]);
+    mean_posture[j] = chordalMean(bases);
+  }
+  const auto features = [&](const TargetMotion& target) {
+    std::vector<double> f;
+    for (int j = 0; j < joints; ++j) {
+      if (above_pelvis[j] || (groups[j] != JointGroup::kSpine && groups[j] != JointGroup::kHead)) {
+        continue;
+      }
+      const glm::dvec3 v = rotationVector(glm::conjugate(mean_posture[j]) * target.base_rotations[j]);
+      f.insert(f.end(), {v.x, v.y, v.z});
+    }
+    return f;
+  };
+  std::vector<std::vector<double>> entries;
+  for (const auto& [label, entry] : library) entries.push_back(features(entry));
+  const std::vector<double> probe = features(clip);
+  // Every feature is an angle, so distances need no scaling: the RMS angular difference, turned
+  // into scores by a Gaussian of 5 degrees (the size of a visible change of attitude).
+  constexpr double kScale = 0.0873;  // 5 degrees, radians
+  StyleScores scores;
+  double total = 0.0;
+  std::vector<double> raw;
+  for (const auto& e : entries) {
+    double squared = 0.0;
+    for (size_t i = 0; i < probe.size(); ++i) squared += (probe[i] - e[i]) * (probe[i] - e[i]);
+    const double rms = probe.empty() ? 0.0 : std::sqrt(squared / static_cast<double>(probe.size()));
+    raw.push_back(std::exp(-0.5 * (rms / kScale) * (rms / kScale)));
+    total += raw.back();
+  }
+  double best = -1.0;
+  for (size_t n = 0; n < library.size(); ++n) {
+    const double score = total > 0.0 ? raw[n] / total : 1.0 / library.size();
+    scores.scores.emplace_back(library[n].first, score);
+    if (score > best) {
+      best = score;
+      scores.closest = library[n].first;
+    }
+  }
+  return scores;
+}
+
+}  // namespace sinew::spectral
