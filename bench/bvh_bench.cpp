@@ -3,6 +3,8 @@
 // Prints, per file, MB/s and the ratio reader time / baseline time.
 #include <benchmark/benchmark.h>
 
+#include "ratio_reporter.h"
+
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -69,16 +71,6 @@ void writeBvh(benchmark::State& state, const Input* input) {
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * input->text.size()));
 }
 
-// Keeps each run's time so that main can print reader / baseline ratios.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) times[run.benchmark_name()] = run.GetAdjustedRealTime();
-    ConsoleReporter::ReportRuns(runs);
-  }
-  std::map<std::string, double> times;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,8 +96,9 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("read_bvh/" + input.name).c_str(), readBvh, &input);
     benchmark::RegisterBenchmark(("write_bvh/" + input.name).c_str(), writeBvh, &input);
   }
+  const auto options = sinew::bench::consoleOptions(argc, argv);
   benchmark::Initialize(&argc, argv);
-  RatioReporter reporter;
+  sinew::bench::RatioReporter reporter(options);
   benchmark::RunSpecifiedBenchmarks(&reporter);
   std::printf("\n%-40s %12s %12s\n", "file", "read/scan", "write/scan");
   for (const Input& input : inputs()) {

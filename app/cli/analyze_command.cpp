@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/analyze_indirect.h"
+#include "cli/analyze_plot.h"
 #include "cli/commands.h"
 #include "sinew/core/file_io.h"
 #include "sinew/spectral/analysis.h"
@@ -20,6 +22,8 @@ struct AnalyzeArgs {
   double tolerance_cm = 1.0;
   int strides = 1;
   std::string json_path;
+  std::string plot_path;
+  std::vector<std::string> plot_joints;
   ImportFlags import;
 };
 
@@ -143,8 +147,12 @@ int runAnalyze(const AnalyzeArgs& args) {
       spectral::analyze(skeleton, asset.value().clips[clip.value()], settings);
   if (!spectrum.ok()) return fail(args.file + ": " + spectrum.message());
   printTable(skeleton, spectrum.value());
+  const IndirectReport indirect =
+      measureIndirect(skeleton, asset.value().clips[clip.value()], spectrum.value());
+  printIndirect(skeleton, indirect);
   if (!args.json_path.empty()) {
     nlohmann::json json = spectrumJson(skeleton, spectrum.value());
+    json.update(indirectJson(skeleton, indirect));
     json["file"] = args.file;
     json["animation"] = asset.value().clips[clip.value()].name;
     json["settings"] = {{"harmonics", args.harmonics}, {"tolerance_cm", args.tolerance_cm},
@@ -152,6 +160,12 @@ int runAnalyze(const AnalyzeArgs& args) {
     Status status = writeFileAtomically(args.json_path, json.dump(2) + "\n");
     if (!status.ok()) return fail(status.message());
     std::printf("\nwrote %s\n", args.json_path.c_str());
+  }
+  if (!args.plot_path.empty()) {
+    Status status = writePlot(args.plot_path, skeleton, asset.value().clips[clip.value()],
+                              spectrum.value(), args.plot_joints);
+    if (!status.ok()) return fail(status.message());
+    std::printf("wrote %s\n", args.plot_path.c_str());
   }
   return 0;
 }
@@ -176,6 +190,14 @@ void addAnalyzeCommand(CLI::App& app, int& exit_code) {
       ->default_val(1)
       ->check(CLI::Range(1, 1000));
   command->add_option("--json", args->json_path, "Also write the results as JSON to this file");
+  CLI::Option* plot = command->add_option(
+      "--plot", args->plot_path,
+      "Also draw original vs model curves and the harmonic amplitudes of chosen joints: .svg, "
+      "or .png (needs rsvg-convert, Debian's librsvg2-bin)");
+  command->add_option("--joints", args->plot_joints,
+                      "Joints to plot, comma-separated (default: the four that rotate most)")
+      ->delimiter(',')
+      ->needs(plot);
   args->import.addTo(*command);
   command->callback([args, &exit_code]() { exit_code = runAnalyze(*args); });
 }

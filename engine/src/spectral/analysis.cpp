@@ -233,18 +233,18 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   double best_error = -1.0;
   int best_count = 0;
   std::vector<int> best_k;
-  MotionSpectrum trial = spectrum;
+  AnalysisWindow best_window = candidates.front();
   for (const AnalysisWindow& window : candidates) {
-    fitWindow(trial, window);
+    fitWindow(spectrum, window);  // trials reuse the spectrum: its signals are too big to copy
     if (settings.auto_harmonics) {
-      trial.joint_k = autoHarmonics(skeleton, clip, trial, settings.tolerance_cm);
+      spectrum.joint_k = autoHarmonics(skeleton, clip, spectrum, settings.tolerance_cm);
     } else {
-      trial.joint_k.assign(skeleton.jointCount(), settings.harmonics);
+      spectrum.joint_k.assign(skeleton.jointCount(), settings.harmonics);
     }
     JointError total;
-    measureError(skeleton, windowFrames(clip, trial), reconstruct(skeleton, trial),
-                 trial.signals, &total);
-    const int count = trial.coefficientCount();
+    measureError(skeleton, windowFrames(clip, spectrum), reconstruct(skeleton, spectrum),
+                 spectrum.signals, &total);
+    const int count = spectrum.coefficientCount();
     const bool better =
         best_error < 0.0 ||
         (settings.auto_harmonics
@@ -255,10 +255,11 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
     if (better) {
       best_error = settings.auto_harmonics ? total.pos_err_cm_max : total.pos_err_cm_mean;
       best_count = count;
-      best_k = trial.joint_k;
-      fitWindow(spectrum, window);
+      best_k = spectrum.joint_k;
+      best_window = window;
     }
   }
+  fitWindow(spectrum, best_window);
 
   // Harmonics kept per joint: the window's auto choice, or K with per-joint overrides.
   if (settings.auto_harmonics) {

@@ -1,6 +1,9 @@
 #include "sinew/spectral/cycle.h"
 
+#include <kissfft/kissfft.hh>
+
 #include <algorithm>
+#include <complex>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -62,6 +65,45 @@ double similarity(const Selection& selection, int frames, double lag) {
   return 1.0 - squared / count / (2.0 * selection.variance);
 }
 
+// similarity() at every integer lag 0 .. frames - 1 at once. The squared differences expand to
+// two sums of squares (prefix sums) minus twice the autocorrelation, and the autocorrelations of
+// all channels add up to one inverse FFT of their summed power spectra: O(channels x N log N)
+// instead of O(channels x N x lags).
+std::vector<double> similarityTable(const Selection& selection, int frames) {
+  std::vector<double> table(frames, 0.0);
+  if (selection.variance <= 0.0 || frames < 2) return table;
+  size_t size = 1;
+  while (size < 2 * static_cast<size_t>(frames)) size *= 2;
+  const kissfft<double> forward(size, false);
+  const kissfft<double> inverse(size, true);
+  std::vector<std::complex<double>> padded(size);
+  std::vector<std::complex<double>> spectrum(size);
+  std::vector<double> power(size, 0.0);
+  std::vector<double> prefix(frames + 1, 0.0);  // running sum of squares over all channels
+  for (const std::vector<double>* values : selection.values) {
+    double mean = 0.0;
+    for (double v : *values) mean += v / frames;
+    std::fill(padded.begin(), padded.end(), 0.0);
+    for (int f = 0; f < frames; ++f) {
+      padded[f] = (*values)[f] - mean;  // centred: the differences are unchanged, rounding is less
+      prefix[f + 1] += std::norm(padded[f]);
+    }
+    forward.transform(padded.data(), spectrum.data());
+    for (size_t k = 0; k < size; ++k) power[k] += std::norm(spectrum[k]);
+  }
+  for (int f = 0; f < frames; ++f) prefix[f + 1] += prefix[f];
+  for (size_t k = 0; k < size; ++k) padded[k] = power[k];
+  inverse.transform(padded.data(), spectrum.data());
+  for (int lag = 0; lag < frames - 1; ++lag) {
+    const int count = frames - lag;
+    const double autocorrelation = spectrum[lag].real() / static_cast<double>(size);
+    const double squares = (prefix[frames] - prefix[lag]) + prefix[count];
+    const double squared = std::max(0.0, squares - 2.0 * autocorrelation);
+    table[lag] = 1.0 - squared / count / (2.0 * selection.variance);
+  }
+  return table;
+}
+
 // Sub-frame peak position from three samples around an integer maximum.
 double refinePeak(double before, double at, double after) {
   const double curvature = before - 2.0 * at + after;
@@ -97,10 +139,7 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
     estimate.message = why.str();
     return estimate;
   }
-  std::vector<double> sim(max_lag + 2, 0.0);
-  for (int lag = std::max(1, min_lag - 1); lag <= max_lag + 1 && lag < frames - 1; ++lag) {
-    sim[lag] = similarity(selection, frames, lag);
-  }
+  const std::vector<double> sim = similarityTable(selection, frames);
   // Local maxima above the threshold; the first that is nearly as strong as the best wins (the
   // best may sit at two or three strides).
   double best = 0.0;
@@ -130,7 +169,7 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
       break;
     }
   }
-  const double offset = chosen + 1 <= max_lag + 1 && chosen + 1 < static_cast<int>(sim.size())
+  const double offset = chosen + 1 < frames - 1
                             ? refinePeak(sim[chosen - 1], sim[chosen], sim[chosen + 1])
                             : 0.0;
   double period = (chosen + offset) * dt;
@@ -139,18 +178,11 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
     const int around = static_cast<int>(std::lround(k * period / dt));
     if (around + 2 >= frames - 1) break;
     int at = around;
-    double value = similarity(selection, frames, around);
     for (int lag = around - 2; lag <= around + 2; ++lag) {
-      const double s = similarity(selection, frames, lag);
-      if (s > value) {
-        value = s;
-        at = lag;
-      }
+      if (sim[lag] > sim[at]) at = lag;
     }
-    if (value < settings.min_similarity) break;
-    const double refined = at + refinePeak(similarity(selection, frames, at - 1), value,
-                                           similarity(selection, frames, at + 1));
-    period = refined * dt / k;
+    if (sim[at] < settings.min_similarity) break;
+    period = (at + refinePeak(sim[at - 1], sim[at], sim[at + 1])) * dt / k;
   }
   estimate.found = true;
   estimate.period_s = period;
@@ -161,33 +193,78 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
 std::vector<AnalysisWindow> candidateWindows(const MotionSignals& signals, double period_s,
                                              int max_strides, double period_slack, int count) {
   const double dt = signals.frame_time;
-  const double duration = (signals.frame_count - 1) * dt;
+  const int frames = signals.frame_count;
+  const double duration = (frames - 1) * dt;
   const Selection selection = selectChannels(signals);
   const auto& rotations = selection.values;
-  // Stride lengths tried: quarter-frame steps across the slack (just the estimate without it).
+  // Per channel prefix sums of values and squares: any window's variance in O(1).
+  std::vector<std::vector<double>> sum1(rotations.size(), std::vector<double>(frames + 1, 0.0));
+  std::vector<std::vector<double>> sum2(rotations.size(), std::vector<double>(frames + 1, 0.0));
+  for (size_t c = 0; c < rotations.size(); ++c) {
+    for (int f = 0; f < frames; ++f) {
+      const double v = (*rotations[c])[f];
+      sum1[c][f + 1] = sum1[c][f] + v;
+      sum2[c][f + 1] = sum2[c][f] + v * v;
+    }
+  }
+  const auto activity = [&](int first, int length) {
+    const int last = std::min(frames, first + std::max(length, 2));
+    const double n = last - first;
+    double total = 0.0;
+    for (size_t c = 0; c < rotations.size(); ++c) {
+      const double mean = (sum1[c][last] - sum1[c][first]) / n;
+      total += (sum2[c][last] - sum2[c][first]) / n - mean * mean;
+    }
+    return total;
+  };
+  // Value and slope must both meet: a jump in either leaks into every harmonic. Slopes are
+  // scaled to radians by the time a fifth harmonic takes to turn a radian.
+  const auto seam = [&](int s, double length, double period) {
+    const double end = s + length / dt;
+    const double slope_scale = period / (2.0 * std::numbers::pi * 5.0) / (2.0 * dt);
+    double squared = 0.0;
+    for (const std::vector<double>* values : rotations) {
+      const double d = sampleAt(*values, end) - (*values)[s];
+      const double slope_end = sampleAt(*values, end + 1.0) - sampleAt(*values, end - 1.0);
+      const double slope_start = sampleAt(*values, s + 1.0) - sampleAt(*values, s - 1.0);
+      const double v = (slope_end - slope_start) * slope_scale;
+      squared += d * d + v * v;
+    }
+    return rotations.empty() ? 0.0 : std::sqrt(squared / rotations.size());
+  };
+  // Two stages keep long clips fast: every start at the estimated stride, then stride lengths
+  // within the slack (quarter-frame steps) around the best starts only.
+  constexpr size_t kStarts = 100;
   const int steps = static_cast<int>(std::ceil(period_slack * period_s / (0.25 * dt)));
   std::vector<AnalysisWindow> all;
   for (int strides = 1; strides <= std::max(1, max_strides); ++strides) {
-    for (int step = -steps; step <= steps; ++step) {
-      const double period = period_s + step * 0.25 * dt;
-      const double length = strides * period;
-      if (length > duration + 1e-9) continue;
-      const int starts = static_cast<int>(std::floor((duration - length) / dt + 1e-9)) + 1;
-      // Value and slope must both meet: a jump in either leaks into every harmonic. Slopes are
-      // scaled to radians by the time a fifth harmonic takes to turn a radian.
-      const double slope_scale = period / (2.0 * std::numbers::pi * 5.0) / (2.0 * dt);
-      for (int s = 0; s < starts; ++s) {
-        const double end = s + length / dt;
-        double squared = 0.0;
-        for (const std::vector<double>* values : rotations) {
-          const double d = sampleAt(*values, end) - (*values)[s];
-          const double slope_end = sampleAt(*values, end + 1.0) - sampleAt(*values, end - 1.0);
-          const double slope_start = sampleAt(*values, s + 1.0) - sampleAt(*values, s - 1.0);
-          const double v = (slope_end - slope_start) * slope_scale;
-          squared += d * d + v * v;
+    const double length = strides * period_s;
+    if (length > duration + 1e-9) break;
+    const int starts = static_cast<int>(std::floor((duration - length) / dt + 1e-9)) + 1;
+    const int frames_in = static_cast<int>(std::floor(length / dt));
+    // A still stretch fits any model and closes any loop (the dog that stands for 3 s before it
+    // trots would be analysed standing): windows need half the activity of the most active one.
+    std::vector<double> active(starts);
+    double most = 0.0;
+    for (int s = 0; s < starts; ++s) most = std::max(most, active[s] = activity(s, frames_in));
+    std::vector<AnalysisWindow> first_stage;
+    for (int s = 0; s < starts; ++s) {
+      if (active[s] >= 0.5 * most) first_stage.push_back({s * dt, strides, period_s, seam(s, length, period_s)});
+    }
+    const auto by_seam = [](const AnalysisWindow& a, const AnalysisWindow& b) { return a.seam < b.seam; };
+    const size_t keep = std::min(kStarts, first_stage.size());
+    std::partial_sort(first_stage.begin(), first_stage.begin() + keep, first_stage.end(), by_seam);
+    first_stage.resize(keep);
+    for (const AnalysisWindow& window : first_stage) {
+      const int s = static_cast<int>(std::lround(window.start_s / dt));
+      for (int step = -steps; step <= steps; ++step) {
+        const double period = period_s + step * 0.25 * dt;
+        const double stretched = strides * period;
+        if (step != 0 && s * dt + stretched <= duration + 1e-9) {
+          all.push_back({s * dt, strides, period, seam(s, stretched, period)});
+        } else if (step == 0) {
+          all.push_back(window);
         }
-        const double seam = rotations.empty() ? 0.0 : std::sqrt(squared / rotations.size());
-        all.push_back({s * dt, strides, period, seam});
       }
     }
   }

@@ -40,9 +40,10 @@ struct AnalysisWindow {
 };
 
 // Windows of 1..max_strides whole strides that fit in the clip, with a stride length within
-// period_slack (a fraction) of `period_s`, ranked by their loop seam (value and slope of every
-// gait channel at the end against the start), lowest first; at most `count`, with starts at
-// least two frames apart so that the candidates differ.
+// period_slack (a fraction) of `period_s`, and at least half the activity (gait-channel
+// variance) of the most active such window (a still stretch would fit any model), ranked by their
+// loop seam (value and slope of every gait channel at the end against the start), lowest first;
+// at most `count`, with starts at least two frames apart so that the candidates differ.
 std::vector<AnalysisWindow> candidateWindows(const MotionSignals& signals, double period_s,
                                              int max_strides, double period_slack = 0.05,
                                              int count = 12);
