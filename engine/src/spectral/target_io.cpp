@@ -68,6 +68,14 @@ std::string targetToJson(const TargetMotion& target, const motion::Skeleton& ske
                         {"trend_per_s", channel.trend},
                         {"harmonics", harmonics}});
   }
+  json secondary = json::array();
+  for (const SecondaryTerm& term : target.secondary) {
+    secondary.push_back({{"joint", skeleton.names[term.joint]},
+                         {"axis", axisName(term.axis)},
+                         {"omega_rad_s", term.omega},
+                         {"amplitude_rad", term.amplitude},
+                         {"phase_rad", term.phase}});
+  }
   const json document = {{"format", kFormat},
                          {"version", kVersion},
                          {"name", target.name},
@@ -75,7 +83,8 @@ std::string targetToJson(const TargetMotion& target, const motion::Skeleton& ske
                          {"period_s", target.period()},
                          {"model", "theta(t) = mean + trend t + sum amplitude sin(n omega0 t + phase)"},
                          {"joints", joints},
-                         {"channels", channels}};
+                         {"channels", channels},
+                         {"secondary", secondary}};
   return document.dump(2) + "\n";
 }
 
@@ -150,6 +159,22 @@ Result<TargetMotion> targetFromJson(std::string_view text, const motion::Skeleto
       channel.terms.push_back(harmonic);
     }
     target.channels.push_back(std::move(channel));
+  }
+  const json& secondary = document.value("secondary", json::array());
+  for (size_t n = 0; n < secondary.size(); ++n) {
+    const std::string where = source + ": secondary[" + std::to_string(n) + "]";
+    SecondaryTerm term;
+    term.joint = skeleton.findJoint(secondary[n].value("joint", ""));
+    if (term.joint < 0) return Status::error(where + ".joint: no such joint in the skeleton");
+    const std::string axis = secondary[n].value("axis", "");
+    if (axis != "x" && axis != "y" && axis != "z") {
+      return Status::error(where + ".axis: expected \"x\", \"y\" or \"z\"");
+    }
+    term.axis = axis[0] - 'x';
+    if (Status s = number(secondary[n], "omega_rad_s", where, term.omega); !s.ok()) return s;
+    if (Status s = number(secondary[n], "amplitude_rad", where, term.amplitude); !s.ok()) return s;
+    if (Status s = number(secondary[n], "phase_rad", where, term.phase); !s.ok()) return s;
+    target.secondary.push_back(term);
   }
   if (Status s = target.validate(skeleton); !s.ok()) return Status::error(source + ": " + s.message());
   return target;

@@ -58,6 +58,15 @@ Status TargetMotion::validate(const motion::Skeleton& skeleton) const {
       }
     }
   }
+  for (size_t n = 0; n < secondary.size(); ++n) {
+    const SecondaryTerm& term = secondary[n];
+    if (term.joint < 0 || term.joint >= joints || term.axis < 0 || term.axis > 2 ||
+        !(term.omega > 0.0) || !std::isfinite(term.omega) || !(term.amplitude >= 0.0) ||
+        !std::isfinite(term.amplitude) || !std::isfinite(term.phase)) {
+      return Status::error("target '" + name + "', secondary term " + std::to_string(n) +
+                           ": needs a joint and axis in range, omega > 0, amplitude >= 0");
+    }
+  }
   for (int j = 0; j < joints; ++j) {
     if (!finite(base_translations[j]) || !(std::abs(glm::length(base_rotations[j]) - 1.0) < 1e-6)) {
       return Status::error("target '" + name + "': base pose of joint '" + skeleton.names[j] +
@@ -81,6 +90,10 @@ void TargetMotion::pose(double t, std::span<glm::dquat> rotations,
     } else {
       translations[channel.joint][channel.axis] += value + channel.trend * t;
     }
+  }
+  for (const SecondaryTerm& term : secondary) {
+    vectors[term.joint][term.axis] += term.amplitude * std::sin(term.omega * t + term.phase);
+    rotates[term.joint] = true;
   }
   for (int j = 0; j < joints; ++j) {
     rotations[j] = rotates[j] ? glm::normalize(base_rotations[j] * fromRotationVector(vectors[j]))
@@ -180,6 +193,9 @@ double poseDistanceDeg(const TargetMotion& a, const TargetMotion& b, int samples
 }
 
 void shiftPhase(TargetMotion& target, double seconds) {
+  for (SecondaryTerm& term : target.secondary) {
+    term.phase = std::remainder(term.phase + term.omega * seconds, 2.0 * std::numbers::pi);
+  }
   for (ChannelModel& channel : target.channels) {
     for (Harmonic& h : channel.terms) {
       h.phase = std::remainder(h.phase + h.n * target.omega0 * seconds, 2.0 * std::numbers::pi);

@@ -30,6 +30,16 @@ struct ChannelModel {
   double trend = 0.0;                // metres per second (travel); 0 for rotations
 };
 
+// Secondary motion (breathing, sway): a sinusoid on one rotation axis of a joint at a frequency
+// that need not be a harmonic of the stride (breathing is slower), added to that axis's channel.
+struct SecondaryTerm {
+  int joint = 0;               // skeleton joint index
+  int axis = 0;                // 0 X, 1 Y, 2 Z of the joint's rotation vector
+  double omega = 0.0;          // rad/s, > 0
+  double amplitude = 0.0;      // radians, >= 0
+  double phase = 0.0;          // radians
+};
+
 struct TargetMotion {
   std::string name;                         // for exported files
   double omega0 = 0.0;                      // rad/s: 2 pi / stride period, > 0
@@ -37,6 +47,7 @@ struct TargetMotion {
   std::vector<glm::dvec3> base_translations;  // (joints) metres
   std::vector<glm::dvec3> base_scales;      // (joints) or empty when all 1
   std::vector<ChannelModel> channels;       // at most one per (joint, kind, axis)
+  std::vector<SecondaryTerm> secondary;     // breathing and sway, on top of the channels
 
   double period() const { return omega0 > 0.0 ? 2.0 * 3.14159265358979323846 / omega0 : 0.0; }
   int jointCount() const { return static_cast<int>(base_rotations.size()); }
