@@ -198,22 +198,6 @@ void candidateWindows(benchmark::State& state) {
   }
 }
 
-// Catmull-Rom at a fractional frame, as the analysis resamples (clamped at the ends).
-double cubicAt(const std::vector<double>& values, double frame) {
-  const int last = static_cast<int>(values.size()) - 1;
-  if (frame <= 0.0) return values[0];
-  if (frame >= last) return values[last];
-  const int i = static_cast<int>(frame);
-  const double u = frame - i;
-  const double p0 = values[std::max(i - 1, 0)];
-  const double p1 = values[i];
-  const double p2 = values[std::min(i + 1, last)];
-  const double p3 = values[std::min(i + 2, last)];
-  return p1 + 0.5 * u *
-                  (p2 - p0 +
-                   u * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + u * (3.0 * (p1 - p2) + p3 - p0)));
-}
-
 // One window's fit: every channel resampled to M samples over the stride and measured.
 void fitWindow(benchmark::State& state) {
   const Data& d = data();
@@ -224,7 +208,7 @@ void fitWindow(benchmark::State& state) {
   for (auto _ : state) {
     for (const spectral::SignalChannel& channel : d.signals.channels) {
       for (int i = 0; i < samples; ++i) {
-        sampled[i] = cubicAt(channel.values, (window.start_s + i * window.period_s / samples) / dt);
+        sampled[i] = spectral::catmullRomAt(channel.values, (window.start_s + i * window.period_s / samples) / dt);
       }
       benchmark::DoNotOptimize(spectral::fitHarmonics(sampled, 1));
     }

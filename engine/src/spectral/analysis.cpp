@@ -14,21 +14,6 @@ int nextPowerOfTwo(int n) {
   return p;
 }
 
-// Catmull-Rom through the frame values, clamped at the ends; `frame` is fractional.
-double cubicAt(const std::vector<double>& values, double frame) {
-  const int last = static_cast<int>(values.size()) - 1;
-  if (frame <= 0.0) return values[0];
-  if (frame >= last) return values[last];
-  const int i = static_cast<int>(frame);
-  const double u = frame - i;
-  const double p0 = values[std::max(i - 1, 0)];
-  const double p1 = values[i];
-  const double p2 = values[std::min(i + 1, last)];
-  const double p3 = values[std::min(i + 2, last)];
-  return p1 + 0.5 * u * (p2 - p0 + u * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 +
-                                        u * (3.0 * (p1 - p2) + p3 - p0)));
-}
-
 // Frames whose time lies in [start, start + length): the frames the model describes.
 std::pair<int, int> windowRange(const MotionSpectrum& spectrum) {
   const double dt = spectrum.signals.frame_time;
@@ -161,13 +146,13 @@ void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window) {
   for (const SignalChannel& channel : signals.channels) {
     double slope = 0.0;
     if (channel.kind == SignalKind::kTranslation) {
-      slope = (cubicAt(channel.values, start_frame + length / dt) -
-               cubicAt(channel.values, start_frame)) / length;
+      slope = (catmullRomAt(channel.values, start_frame + length / dt) -
+               catmullRomAt(channel.values, start_frame)) / length;
       if (channel.joint == signals.travel_joint) spectrum.travel_velocity[channel.axis] = slope;
     }
     for (int i = 0; i < samples; ++i) {
       const double t = i * length / samples;
-      sampled[i] = cubicAt(channel.values, start_frame + t / dt) - slope * t;
+      sampled[i] = catmullRomAt(channel.values, start_frame + t / dt) - slope * t;
     }
     double aperiodic = 0.0;
     spectrum.series.push_back(fitHarmonics(sampled, window.strides, &aperiodic));

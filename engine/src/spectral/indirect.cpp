@@ -582,22 +582,6 @@ std::vector<glm::dvec3> centreOfMass(const motion::Skeleton& skeleton, const mot
 
 namespace {
 
-// Catmull-Rom through the frame values, clamped at the ends; `frame` is fractional.
-double cubicAt(const std::vector<double>& values, double frame) {
-  const int last = static_cast<int>(values.size()) - 1;
-  if (frame <= 0.0) return values[0];
-  if (frame >= last) return values[last];
-  const int i = static_cast<int>(frame);
-  const double u = frame - i;
-  const double p0 = values[std::max(i - 1, 0)];
-  const double p1 = values[i];
-  const double p2 = values[std::min(i + 1, last)];
-  const double p3 = values[std::min(i + 2, last)];
-  return p1 + 0.5 * u *
-                  (p2 - p0 +
-                   u * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + u * (3.0 * (p1 - p2) + p3 - p0)));
-}
-
 // The signal over the spectrum's window, resampled like the joint channels (minus its linear
 // trend when `detrend`), and its harmonics.
 IndirectSeries fitOverWindow(std::string name, std::string unit, const std::vector<double>& values,
@@ -607,11 +591,11 @@ IndirectSeries fitOverWindow(std::string name, std::string unit, const std::vect
   const double length = spectrum.window.strides * spectrum.period_s;
   const double start = spectrum.window.start_s / dt;
   const double slope =
-      detrend ? (cubicAt(values, start + length / dt) - cubicAt(values, start)) / length : 0.0;
+      detrend ? (catmullRomAt(values, start + length / dt) - catmullRomAt(values, start)) / length : 0.0;
   std::vector<double> sampled(samples);
   for (int i = 0; i < samples; ++i) {
     const double t = i * length / samples;
-    sampled[i] = cubicAt(values, start + t / dt) - slope * t;
+    sampled[i] = catmullRomAt(values, start + t / dt) - slope * t;
   }
   IndirectSeries out{std::move(name), std::move(unit), {}, 0.0};
   out.series = fitHarmonics(sampled, spectrum.window.strides, &out.aperiodic_energy);

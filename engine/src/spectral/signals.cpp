@@ -5,6 +5,20 @@
 
 namespace sinew::spectral {
 
+double catmullRomAt(const std::vector<double>& values, double frame) {
+  const int last = static_cast<int>(values.size()) - 1;
+  if (frame <= 0.0) return values[0];
+  if (frame >= last) return values[last];
+  const int i = static_cast<int>(frame);
+  const double u = frame - i;
+  const double p0 = values[std::max(i - 1, 0)];
+  const double p1 = values[i];
+  const double p2 = values[std::min(i + 1, last)];
+  const double p3 = values[std::min(i + 2, last)];
+  return p1 + 0.5 * u * (p2 - p0 + u * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 +
+                                        u * (3.0 * (p1 - p2) + p3 - p0)));
+}
+
 double angleBetween(const glm::dquat& a, const glm::dquat& b) {
   const glm::dquat d = glm::conjugate(a) * b;
   return 2.0 * std::atan2(glm::length(glm::dvec3(d.x, d.y, d.z)), std::abs(d.w));

@@ -43,6 +43,11 @@ struct MotionSignals {
 MotionSignals extractSignals(const motion::Skeleton& skeleton, const motion::Clip& clip,
                              double min_rotation_rad = 1e-4, double min_translation_m = 1e-4);
 
+// A signal's value at a fractional frame: Catmull-Rom through the frame values, clamped at the
+// ends. How the analysis resamples windows, so everything that resamples agrees with it.
+// Precondition: values not empty.
+double catmullRomAt(const std::vector<double>& values, double frame);
+
 // The angle between two rotations, radians in [0, pi]; exact for tiny angles (acos is not).
 double angleBetween(const glm::dquat& a, const glm::dquat& b);
 
