@@ -58,8 +58,9 @@ WorstPoint worstPoint(const motion::Skeleton& skeleton, const motion::Clip& orig
 
 // The fewest harmonics per joint keeping the worst position error under the tolerance. Greedy:
 // from the mean pose, find the worst point and give one more harmonic to the joint above it whose
-// next harmonic moves that point furthest (rotation amplitude x distance, or translation
-// amplitude); then take back every harmonic the tolerance does not need.
+// next harmonic moves that point furthest per coefficient it costs (rotation amplitude x
+// distance, or translation amplitude, over the joint's channel count); then take back every
+// harmonic the tolerance does not need.
 std::vector<int> autoHarmonics(const motion::Skeleton& skeleton, const motion::Clip& original,
                                const MotionSpectrum& spectrum, double tolerance_cm) {
   const int joints = skeleton.jointCount();
@@ -98,7 +99,10 @@ std::vector<int> autoHarmonics(const motion::Skeleton& skeleton, const motion::C
       const double lever = glm::length(point - glm::dvec3(world[j][3]));
       double moved = 0.0;
       if (rotation_moves_point || translates[j]) {
-        moved = nextAmplitude(j) * (translates[j] ? 1.0 : lever);
+        // Per coefficient spent: a step on a joint with rotation and travel channels costs twice
+        // what a step on a limb joint does.
+        moved = nextAmplitude(j) * (translates[j] ? 1.0 : lever) /
+                static_cast<double>(std::max<size_t>(1, ranked[j].size()));
       }
       if (moved > gain) {
         gain = moved;
