@@ -1,5 +1,7 @@
-// sinew: the command-line front end (the editor arrives with its own issue).
+// sinew: the command-line front end; without arguments it opens the editor (`sinew edit`).
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "cli/commands.h"
 
@@ -12,8 +14,13 @@ int main(int argc, char** argv) {
   sinew::app::addConvertCommand(app, exit_code);
   sinew::app::addAnalyzeCommand(app, exit_code);
   sinew::app::addStyleCommand(app, exit_code);
+  sinew::app::addEditCommand(app, exit_code);
   try {
-    app.parse(argc, argv);
+    if (argc == 1) {
+      app.parse(std::vector<std::string>{"edit"});  // no arguments: open the editor
+    } else {
+      app.parse(argc, argv);
+    }
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   }

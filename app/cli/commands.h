@@ -31,5 +31,6 @@ void addInfoCommand(CLI::App& app, int& exit_code);
 void addConvertCommand(CLI::App& app, int& exit_code);
 void addAnalyzeCommand(CLI::App& app, int& exit_code);
 void addStyleCommand(CLI::App& app, int& exit_code);
+void addEditCommand(CLI::App& app, int& exit_code);
 
 }  // namespace sinew::app

@@ -1,0 +1,28 @@
+// `sinew edit [FILE] [--animation NAME] [--screenshot OUT.png --frames N]`: the editor.
+#include <memory>
+
+#include "cli/commands.h"
+#include "editor/editor.h"
+
+namespace sinew::app {
+
+void addEditCommand(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<editor::EditorOptions>();
+  CLI::App* command = app.add_subcommand(
+      "edit", "Open the editor (the default when sinew runs without a command)");
+  command->add_option("file", options->file,
+                      "BVH or glTF file to open (default: the bundled biped walk)");
+  command->add_option("--animation", options->animation, "Animation to open in a glTF, by name");
+  command->add_option("--screenshot", options->screenshot,
+                      "Render --frames frames with playback running, save the window as this PNG "
+                      "and exit");
+  command->add_option("--frames", options->frames, "Frames before the screenshot (default 30)")
+      ->check(CLI::Range(1, 100000));
+  command->callback([options, &exit_code] {
+    if (options->file.empty()) options->file = SINEW_ASSET_DIR "/biped_walk.bvh";
+    options->shader_dir = SINEW_SHADER_DIR;
+    exit_code = editor::runEditor(*options);
+  });
+}
+
+}  // namespace sinew::app

@@ -1,0 +1,21 @@
+// The editor: a GLFW window with Dear ImGui panels around an OpenGL viewport.
+#pragma once
+
+#include <string>
+
+namespace sinew::editor {
+
+struct EditorOptions {
+  std::string file;              // opened at start; empty: none
+  std::string animation;         // the animation to choose in `file` (glTF); empty: the first
+  std::string screenshot;        // when set: render `frames` frames, save the window here, exit
+  int frames = 30;               // frames rendered before the screenshot, >= 1
+  std::string shader_dir;        // where the GLSL files are
+};
+
+// Runs until the window closes (or the screenshot is written). Returns the process exit code:
+// 0, or 1 when no window could be made or the screenshot could not be written. A file that does
+// not load is reported in the Log panel (and on stdout), not as a failure.
+int runEditor(const EditorOptions& options);
+
+}  // namespace sinew::editor

@@ -1,0 +1,159 @@
+#include "editor/editor_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+namespace sinew::editor {
+
+void Log::add(LogLevel level, std::string text) {
+  const char* prefix = level == LogLevel::kError     ? "error: "
+                       : level == LogLevel::kWarning ? "warning: "
+                                                     : "";
+  std::cout << "sinew edit: " << prefix << text << '\n' << std::flush;
+  lines_.push_back({level, clock_s, std::move(text)});
+}
+
+const motion::Clip* EditorState::clip() const {
+  if (!asset || clip_index < 0 || clip_index >= static_cast<int>(asset->clips.size())) {
+    return nullptr;
+  }
+  return &asset->clips[static_cast<size_t>(clip_index)];
+}
+
+namespace {
+
+void rememberRecent(EditorState& state, const std::string& path) {
+  auto& recent = state.recent_files;
+  recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
+  recent.insert(recent.begin(), path);
+  if (static_cast<int>(recent.size()) > kMaxRecentFiles) recent.resize(kMaxRecentFiles);
+}
+
+void rebuildModel(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                  AnalysisState& analysis) {
+  const spectral::MotionSpectrum& spectrum = analysis.spectrum;
+  analysis.target = spectral::targetFromSpectrum(spectrum, analysis.joint_k, clip.name);
+  const motion::Clip original = spectral::windowFrames(clip, spectrum);
+  const motion::Clip model = spectral::reconstruct(skeleton, spectrum, analysis.joint_k);
+  analysis.errors =
+      spectral::measureError(skeleton, original, model, spectrum.signals, &analysis.total);
+}
+
+// The joint whose rotation carries the most harmonic energy: the spectrum worth showing first.
+int mostActiveJoint(const spectral::MotionSpectrum& spectrum) {
+  int best = 0;
+  double best_energy = -1.0;
+  std::vector<double> energy;
+  for (size_t c = 0; c < spectrum.signals.channels.size(); ++c) {
+    const spectral::SignalChannel& channel = spectrum.signals.channels[c];
+    if (channel.kind != spectral::SignalKind::kRotation) continue;
+    if (energy.size() <= static_cast<size_t>(channel.joint)) energy.resize(channel.joint + 1, 0.0);
+    for (const spectral::Harmonic& h : spectrum.series[c].harmonics) {
+      energy[static_cast<size_t>(channel.joint)] += h.amplitude * h.amplitude;
+    }
+  }
+  for (size_t j = 0; j < energy.size(); ++j) {
+    if (energy[j] > best_energy) {
+      best_energy = energy[j];
+      best = static_cast<int>(j);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+bool openFile(EditorState& state, const std::filesystem::path& path,
+              const std::string& animation) {
+  Result<motion::MotionAsset> imported = motion::importMotion(path);
+  if (!imported.ok()) {
+    state.log.error(imported.message());
+    return false;
+  }
+  motion::MotionAsset& asset = imported.value();
+  if (asset.clips.empty()) {
+    state.log.error(path.string() + ": the file has no animation to play");
+    return false;
+  }
+  int clip_index = 0;
+  if (!animation.empty()) {
+    clip_index = asset.findClip(animation);
+    if (clip_index < 0) {
+      std::string names;
+      for (const motion::Clip& clip : asset.clips) names += (names.empty() ? "" : ", ") + clip.name;
+      state.log.error(path.string() + ": no animation called '" + animation + "' (there are: " +
+                      names + ")");
+      return false;
+    }
+  }
+  for (const std::string& warning : asset.warnings) state.log.warning(warning);
+  state.asset = std::move(asset);
+  state.selected_joint = 0;
+  state.frame_requested = true;
+  state.file_name = path.filename().string();
+  rememberRecent(state, path.string());
+  state.log.info("opened " + path.string() + ": " +
+                 std::to_string(state.asset->skeleton.jointCount()) + " joints, " +
+                 std::to_string(state.asset->clips.size()) + " animation(s)");
+  chooseClip(state, clip_index);
+  return true;
+}
+
+void chooseClip(EditorState& state, int clip_index) {
+  state.clip_index = clip_index;
+  state.analysis.reset();
+  state.playback.time_s = 0.0;
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr) return;
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, *clip);
+  if (!spectrum.ok()) {
+    state.log.error("analysis of '" + clip->name + "': " + spectrum.message());
+    return;
+  }
+  AnalysisState analysis;
+  analysis.spectrum = std::move(spectrum.value());
+  analysis.joint_k = analysis.spectrum.joint_k;
+  for (const std::string& note : analysis.spectrum.notes) state.log.warning(note);
+  rebuildModel(skeleton, *clip, analysis);
+  state.selected_joint = mostActiveJoint(analysis.spectrum);
+  state.analysis = std::move(analysis);
+  char line[160];
+  std::snprintf(line, sizeof line, "'%s': %d frames at %.0f fps, stride %.3f s, model error %.2f deg RMS",
+                clip->name.c_str(), clip->frame_count, clip->fps(), state.analysis->spectrum.period_s,
+                state.analysis->total.rot_err_deg_rms);
+  state.log.info(line);
+}
+
+void setJointK(EditorState& state, std::vector<int> joint_k) {
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr || !state.analysis) return;
+  for (int& k : joint_k) k = std::clamp(k, 0, kMaxK);
+  joint_k.resize(static_cast<size_t>(state.asset->skeleton.jointCount()), 0);
+  state.analysis->joint_k = std::move(joint_k);
+  rebuildModel(state.asset->skeleton, *clip, *state.analysis);
+}
+
+void advancePlayback(EditorState& state, double dt_s) {
+  const motion::Clip* clip = state.clip();
+  Playback& playback = state.playback;
+  if (clip == nullptr) return;
+  const double duration = clip->duration();
+  if (playback.playing) playback.time_s += dt_s * playback.speed;
+  if (duration <= 0.0) {
+    playback.time_s = 0.0;
+  } else if (playback.time_s > duration) {
+    if (playback.loop) {
+      playback.time_s = std::fmod(playback.time_s, duration);
+    } else {
+      playback.time_s = duration;
+      playback.playing = false;
+    }
+  } else if (playback.time_s < 0.0) {
+    playback.time_s = 0.0;
+  }
+}
+
+}  // namespace sinew::editor

@@ -1,0 +1,27 @@
+// The editor's panels: one file each, one Draw function each. A panel reads and edits the
+// EditorState through the model's functions (openFile, setJointK, ...) and keeps only its own
+// widget state (text fields) in its small struct here. The caller places the window first.
+#pragma once
+
+#include <string>
+
+#include "editor/editor_state.h"
+
+namespace sinew::editor {
+
+struct FilesPanelState {
+  std::string path;       // the path field
+  std::string animation;  // the animation wanted when opening a glTF
+};
+
+struct SpectrumPanelState {
+  int global_k = 5;        // the "all joints" slider
+  bool joints_moving_only = true;  // hide joints that do not move in the list
+};
+
+void drawFilesPanel(EditorState& state, FilesPanelState& panel);
+void drawTimelinePanel(EditorState& state);
+void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel);
+void drawLogPanel(EditorState& state);
+
+}  // namespace sinew::editor

@@ -1,0 +1,186 @@
+// Spectrum: the stride and the model's total error on top, a K slider for all joints, the joint
+// list (K and error per joint), and for the chosen joint its harmonic amplitudes as bars (n =
+// 1..12, rotation axes X/Y/Z in red/green/blue; kept harmonics filled, discarded ones outlined)
+// with its own K slider. Every K change re-runs the reconstruction and shows the error live.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <imgui.h>
+
+#include "editor/panels/panels.h"
+
+namespace sinew::editor {
+namespace {
+
+constexpr int kBarHarmonics = 12;
+constexpr double kDegPerRad = 57.29577951308232;
+const ImU32 kAxisColors[3] = {IM_COL32(235, 90, 80, 255), IM_COL32(110, 200, 95, 255),
+                              IM_COL32(85, 145, 240, 255)};
+
+bool jointMoves(const spectral::MotionSpectrum& spectrum, int joint) {
+  for (const spectral::SignalChannel& channel : spectrum.signals.channels) {
+    if (channel.joint == joint) return true;
+  }
+  return false;
+}
+
+void drawBars(const EditorState& state, int joint) {
+  const AnalysisState& analysis = *state.analysis;
+  const spectral::MotionSpectrum& spectrum = analysis.spectrum;
+  const int k = analysis.joint_k[static_cast<size_t>(joint)];
+  // Per axis: amplitudes (degrees) of n = 1..12 and whether each is kept.
+  double amplitude[3][kBarHarmonics] = {};
+  bool kept[3][kBarHarmonics] = {};
+  bool has_axis[3] = {};
+  double top = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int c = spectrum.signals.find(joint, spectral::SignalKind::kRotation, axis);
+    if (c < 0) continue;
+    has_axis[axis] = true;
+    const spectral::HarmonicSeries& series = spectrum.series[static_cast<size_t>(c)];
+    for (const spectral::Harmonic& h : series.harmonics) {
+      if (h.n < 1 || h.n > kBarHarmonics) continue;
+      amplitude[axis][h.n - 1] = h.amplitude * kDegPerRad;
+      top = std::max(top, amplitude[axis][h.n - 1]);
+    }
+    for (const spectral::Harmonic& h : series.strongest(k)) {
+      if (h.n >= 1 && h.n <= kBarHarmonics) kept[axis][h.n - 1] = true;
+    }
+  }
+  if (!has_axis[0] && !has_axis[1] && !has_axis[2]) {
+    ImGui::TextDisabled("This joint does not rotate in this clip.");
+    return;
+  }
+  top = std::max(top, 1e-3);
+
+  const float height = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 120.0f, 300.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  const float left = 44.0f, bottom = 20.0f, top_pad = 8.0f;
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 plot_min(origin.x + left, origin.y + top_pad);
+  const ImVec2 plot_max(origin.x + width - 4.0f, origin.y + height - bottom);
+  draw->AddRectFilled(plot_min, plot_max, IM_COL32(30, 32, 37, 255), 3.0f);
+  const float plot_h = plot_max.y - plot_min.y;
+  // Horizontal guides at quarters of the largest amplitude, labelled in degrees.
+  for (int q = 0; q <= 4; ++q) {
+    const float y = plot_max.y - plot_h * q / 4.0f;
+    draw->AddLine(ImVec2(plot_min.x, y), ImVec2(plot_max.x, y), IM_COL32(255, 255, 255, q ? 18 : 50));
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f°", top * q / 4.0);
+    draw->AddText(ImVec2(origin.x, y - 7.0f), IM_COL32(150, 155, 165, 255), text);
+  }
+  const float group = (plot_max.x - plot_min.x) / kBarHarmonics;
+  const float bar = group * 0.29f;
+  for (int n = 0; n < kBarHarmonics; ++n) {
+    const float gx = plot_min.x + group * n + group * 0.5f - 1.5f * bar;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!has_axis[axis]) continue;
+      const float h = static_cast<float>(amplitude[axis][n] / top) * plot_h;
+      const ImVec2 a(gx + axis * bar + 1.0f, plot_max.y - std::max(h, 1.0f));
+      const ImVec2 b(gx + (axis + 1) * bar - 1.0f, plot_max.y);
+      if (kept[axis][n]) {
+        draw->AddRectFilled(a, b, kAxisColors[axis], 1.5f);
+      } else {
+        draw->AddRect(a, b, kAxisColors[axis] & IM_COL32(255, 255, 255, 170), 1.5f, 0, 1.2f);
+      }
+    }
+    char label[8];
+    std::snprintf(label, sizeof label, "%d", n + 1);
+    const ImVec2 size = ImGui::CalcTextSize(label);
+    draw->AddText(ImVec2(plot_min.x + group * (n + 0.5f) - size.x * 0.5f, plot_max.y + 3.0f),
+                  IM_COL32(170, 175, 185, 255), label);
+  }
+  ImGui::Dummy(ImVec2(width, height));
+}
+
+}  // namespace
+
+void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
+  if (!ImGui::Begin("Spectrum", nullptr, ImGuiWindowFlags_NoCollapse)) {
+    ImGui::End();
+    return;
+  }
+  if (!state.analysis || state.clip() == nullptr) {
+    ImGui::TextDisabled(state.clip() == nullptr ? "Open a clip to see its spectrum."
+                                                : "This clip could not be analysed (see Log).");
+    ImGui::End();
+    return;
+  }
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  AnalysisState& analysis = *state.analysis;
+  const spectral::MotionSpectrum& spectrum = analysis.spectrum;
+
+  if (spectrum.stride.found) {
+    ImGui::Text("Stride %.3f s (%.2f Hz)", spectrum.period_s, 1.0 / spectrum.period_s);
+    ImGui::SameLine();
+    ImGui::TextDisabled("similarity %.2f, window %.2f s + %d stride(s)", spectrum.stride.similarity,
+                        spectrum.window.start_s, spectrum.window.strides);
+  } else {
+    ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.35f, 1.0f), "No stride: whole clip as one cycle (%.2f s)",
+                       spectrum.period_s);
+  }
+  const spectral::JointError& total = analysis.total;
+  ImGui::Text("Model error  %.2f° RMS   %.2f cm mean   %.2f cm max", total.rot_err_deg_rms,
+              total.pos_err_cm_mean, total.pos_err_cm_max);
+  int coefficients = 0;
+  for (const spectral::SignalChannel& channel : spectrum.signals.channels) {
+    coefficients += 1 + 2 * analysis.joint_k[static_cast<size_t>(channel.joint)];
+  }
+  ImGui::TextDisabled("%d coefficients over %zu channels", coefficients,
+                      spectrum.signals.channels.size());
+  ImGui::SetNextItemWidth(-110.0f);
+  if (ImGui::SliderInt("K all joints", &panel.global_k, 0, kMaxK)) {
+    setJointK(state, std::vector<int>(analysis.joint_k.size(), panel.global_k));
+  }
+  ImGui::Separator();
+
+  // Left: the joint list. Right: the chosen joint.
+  const float list_w = 190.0f;
+  ImGui::BeginChild("##joints", ImVec2(list_w, 0), true);
+  ImGui::Checkbox("moving only", &panel.joints_moving_only);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    const bool moves = jointMoves(spectrum, j);
+    if (panel.joints_moving_only && !moves) continue;
+    char label[160];
+    std::snprintf(label, sizeof label, "%*s%s", 2 * std::min(skeleton.depth(j), 8), "",
+                  skeleton.names[static_cast<size_t>(j)].c_str());
+    if (!moves) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    if (ImGui::Selectable(label, state.selected_joint == j)) state.selected_joint = j;
+    if (!moves) ImGui::PopStyleColor();
+    if (moves) {
+      ImGui::SameLine(list_w - 48.0f);
+      ImGui::TextDisabled("K%d", analysis.joint_k[static_cast<size_t>(j)]);
+    }
+  }
+  ImGui::EndChild();
+  ImGui::SameLine();
+
+  ImGui::BeginChild("##joint", ImVec2(0, 0), false);
+  const int joint = std::clamp(state.selected_joint, 0, skeleton.jointCount() - 1);
+  ImGui::Text("%s", skeleton.names[static_cast<size_t>(joint)].c_str());
+  int k = analysis.joint_k[static_cast<size_t>(joint)];
+  ImGui::SetNextItemWidth(-30.0f);
+  if (ImGui::SliderInt("K", &k, 0, kMaxK)) {
+    std::vector<int> joint_k = analysis.joint_k;
+    joint_k[static_cast<size_t>(joint)] = k;
+    setJointK(state, std::move(joint_k));
+  }
+  const spectral::JointError& error = state.analysis->errors[static_cast<size_t>(joint)];
+  ImGui::Text("%.2f° RMS  (max %.2f°)", error.rot_err_deg_rms, error.rot_err_deg_max);
+  ImGui::Text("%.2f cm mean  (max %.2f cm)", error.pos_err_cm_mean, error.pos_err_cm_max);
+  ImGui::TextColored(ImVec4(0.92f, 0.35f, 0.31f, 1.0f), "X");
+  ImGui::SameLine();
+  ImGui::TextColored(ImVec4(0.43f, 0.78f, 0.37f, 1.0f), "Y");
+  ImGui::SameLine();
+  ImGui::TextColored(ImVec4(0.33f, 0.57f, 0.94f, 1.0f), "Z");
+  ImGui::SameLine();
+  ImGui::TextDisabled(" filled kept, outlined dropped");
+  drawBars(state, joint);
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+}  // namespace sinew::editor

@@ -1,0 +1,82 @@
+// Timeline: play/pause, frame stepping, scrubbing in frames (seconds shown), speed, loop, and what
+// the viewport shows (original, reconstructed model, beside or overlaid, camera follow).
+#include <algorithm>
+#include <cmath>
+
+#include <imgui.h>
+
+#include "editor/panels/panels.h"
+
+namespace sinew::editor {
+
+void drawTimelinePanel(EditorState& state) {
+  if (!ImGui::Begin("Timeline", nullptr, ImGuiWindowFlags_NoCollapse)) {
+    ImGui::End();
+    return;
+  }
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr) {
+    ImGui::TextDisabled("Open a clip to play it.");
+    ImGui::End();
+    return;
+  }
+  Playback& playback = state.playback;
+  const int last = clip->frame_count - 1;
+  int frame = std::clamp(static_cast<int>(std::lround(playback.time_s / clip->frame_time)), 0, last);
+
+  if (ImGui::Button(playback.playing ? "Pause" : "Play", ImVec2(64.0f, 0.0f))) {
+    playback.playing = !playback.playing;
+  }
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##back", ImGuiDir_Left)) {
+    playback.playing = false;
+    playback.time_s = std::max(frame - 1, 0) * clip->frame_time;
+  }
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) {
+    playback.playing = false;
+    playback.time_s = std::min(frame + 1, last) * clip->frame_time;
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("Loop", &playback.loop);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(140.0f);
+  float speed = static_cast<float>(playback.speed);
+  if (ImGui::SliderFloat("Speed", &speed, 0.1f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic)) {
+    playback.speed = speed;
+  }
+  ImGui::SameLine();
+  ImGui::Text("   %6.3f s / %.3f s", playback.time_s, clip->duration());
+
+  ImGui::SetNextItemWidth(-1.0f);
+  char label[64];
+  std::snprintf(label, sizeof label, "frame %d / %d  (%.2f s)", frame, last,
+                frame * clip->frame_time);
+  if (ImGui::SliderInt("##scrub", &frame, 0, last, label)) {
+    playback.time_s = frame * clip->frame_time;
+  }
+  if (ImGui::IsItemActive()) playback.playing = false;
+
+  ViewToggles& view = state.view;
+  ImGui::Checkbox("Original", &view.show_original);
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!state.analysis);
+  ImGui::Checkbox("Reconstructed (model)", &view.show_model);
+  ImGui::SameLine();
+  ImGui::Checkbox("Beside", &view.model_beside);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Off: the model is overlaid on the original");
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  ImGui::Checkbox("Follow", &view.follow);
+  ImGui::SameLine();
+  ImGui::Checkbox("Grid", &view.show_grid);
+  ImGui::SameLine();
+  ImGui::Checkbox("End sites", &view.show_end_sites);
+  ImGui::SameLine();
+  if (ImGui::Button("Frame (F)")) state.frame_requested = true;
+  ImGui::End();
+}
+
+}  // namespace sinew::editor

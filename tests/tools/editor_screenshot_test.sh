@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# The editor under Xvfb: `screenshot` renders the bundled walk for 20 frames and checks the PNG
+# (size 1600x900, many colours, the viewport not blank); `broken` opens a truncated BVH file and
+# checks that the editor still runs, exits 0 and names the file and line in its log.
+# Usage: editor_screenshot_test.sh SINEW_BINARY WORK_DIR (screenshot|broken)
+# Exit 77 (skipped) when xvfb-run is missing.
+set -euo pipefail
+sinew="$1"
+work="$2"
+mode="$3"
+if ! command -v xvfb-run >/dev/null 2>&1; then
+  echo "SKIP: xvfb-run is not installed (apt-get install xvfb)"
+  exit 77
+fi
+mkdir -p "$work"
+xvfb=(xvfb-run -a -s "-screen 0 1600x900x24")
+
+case "$mode" in
+  screenshot)
+    png="$work/editor_walk.png"
+    rm -f "$png"
+    "${xvfb[@]}" "$sinew" edit --screenshot "$png" --frames 20
+    test -s "$png" || { echo "FAIL: no screenshot at $png"; exit 1; }
+    # A PNG reader with the standard library only: size, then distinct colours overall and in
+    # the viewport (the middle of the window, where the characters are).
+    python3 - "$png" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+pos, idat, width, height = 8, b"", 0, 0
+while pos < len(data):
+    length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    body = data[pos + 8:pos + 8 + length]
+    if kind == b"IHDR":
+        width, height, depth, color = struct.unpack(">IIBB", body[:10])
+        assert depth == 8 and color == 2, f"expected 8-bit RGB, got depth {depth} colour {color}"
+    elif kind == b"IDAT":
+        idat += body
+    pos += 12 + length
+if (width, height) != (1600, 900):
+    sys.exit(f"FAIL: screenshot is {width}x{height}, expected 1600x900")
+raw = zlib.decompress(idat)
+stride = width * 3
+rows, prev = [], bytearray(stride)
+for y in range(height):
+    f = raw[y * (stride + 1)]
+    line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    if f == 1:
+        for i in range(3, stride): line[i] = (line[i] + line[i - 3]) & 255
+    elif f == 2:
+        line = bytearray((a + b) & 255 for a, b in zip(line, prev))
+    elif f == 3:
+        for i in range(stride):
+            left = line[i - 3] if i >= 3 else 0
+            line[i] = (line[i] + ((left + prev[i]) >> 1)) & 255
+    elif f == 4:
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], (prev[i - 3] if i >= 3 else 0)
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(line)
+    prev = line
+def colours(x0, x1, y0, y1):
+    return {bytes(rows[y][3 * x:3 * x + 3]) for y in range(y0, y1, 2) for x in range(x0, x1, 2)}
+everything = colours(0, width, 0, height)
+viewport = colours(width * 3 // 10, width * 6 // 10, height // 6, height * 2 // 3)
+print(f"screenshot {width}x{height}: {len(everything)} colours, {len(viewport)} in the viewport")
+if len(everything) <= 50 or len(viewport) <= 50:
+    sys.exit("FAIL: the screenshot looks blank")
+PY
+    ;;
+  broken)
+    bvh="$work/broken.bvh"
+    printf 'HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n  CHANNELS 6 Xposition\n' > "$bvh"
+    out="$work/broken.log"
+    "${xvfb[@]}" "$sinew" edit "$bvh" --screenshot "$work/broken.png" --frames 3 > "$out" 2>&1 \
+      || { cat "$out"; echo "FAIL: the editor exited non-zero on a broken file"; exit 1; }
+    cat "$out"
+    grep -Eq 'error: .*broken\.bvh:[0-9]+' "$out" \
+      || { echo "FAIL: the log does not name broken.bvh and a line"; exit 1; }
+    test -s "$work/broken.png" || { echo "FAIL: no screenshot"; exit 1; }
+    ;;
+  *)
+    echo "unknown mode $mode"; exit 2 ;;
+esac
+echo PASS
