@@ -1,0 +1,666 @@
+#include "sinew/physics/body_plan.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat3x3.hpp>
+
+namespace sinew::physics {
+namespace {
+
+constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
+constexpr glm::dquat kIdentity(1.0, 0.0, 0.0, 0.0);
+
+bool nameHasAny(const std::string& name, const std::vector<std::string>& parts) {
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const std::string& part : parts) {
+    std::string p(part);
+    std::transform(p.begin(), p.end(), p.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (!p.empty() && lower.find(p) != std::string::npos) return true;
+  }
+  return false;
+}
+
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+glm::dquat positiveW(glm::dquat q) {
+  return q.w < 0.0 ? -q : q;
+}
+
+// Rotation vector (log map) of a unit quaternion, radians.
+glm::dvec3 rotationVector(glm::dquat q) {
+  q = positiveW(glm::normalize(q));
+  const glm::dvec3 v(q.x, q.y, q.z);
+  const double s = glm::length(v);
+  if (s < 1e-12) return 2.0 * v;
+  return v * (2.0 * std::atan2(s, q.w) / s);
+}
+
+// Hinge angle of q about a unit axis, radians in (-pi, pi].
+double hingeAngle(glm::dquat q, const glm::dvec3& axis) {
+  q = positiveW(glm::normalize(q));
+  return 2.0 * std::atan2(glm::dot(glm::dvec3(q.x, q.y, q.z), axis), q.w);
+}
+
+glm::dvec3 transformPoint(const glm::dmat4& m, const glm::dvec3& p) {
+  return glm::dvec3(m * glm::dvec4(p, 1.0));
+}
+
+// Shortest rotation taking +Y onto the unit direction d.
+glm::dquat rotationFromY(const glm::dvec3& d) {
+  const double c = glm::dot(kUp, d);
+  if (c < -0.999999) return glm::angleAxis(std::numbers::pi, glm::dvec3(1.0, 0.0, 0.0));
+  const glm::dvec3 axis = glm::cross(kUp, d);
+  const double s = glm::length(axis);
+  if (s < 1e-12) return kIdentity;
+  return glm::angleAxis(std::atan2(s, c), axis / s);
+}
+
+// Principal eigenvector (by power iteration, deterministic) and its share of the trace.
+void principalAxis(const glm::dmat3& m, glm::dvec3& axis, double& share) {
+  const double trace = m[0][0] + m[1][1] + m[2][2];
+  axis = glm::dvec3(1.0, 0.0, 0.0);
+  share = 0.0;
+  if (!(trace > 1e-15)) return;
+  // Start from the column with the largest diagonal to avoid an orthogonal start.
+  int best = 0;
+  for (int i = 1; i < 3; ++i)
+    if (m[i][i] > m[best][best]) best = i;
+  glm::dvec3 v = m[best];
+  if (glm::length(v) < 1e-300) return;
+  v = glm::normalize(v);
+  for (int it = 0; it < 200; ++it) {
+    const glm::dvec3 next = m * v;
+    const double len = glm::length(next);
+    if (len < 1e-300) break;
+    v = next / len;
+  }
+  axis = v;
+  share = glm::dot(v, m * v) / trace;
+}
+
+double segmentRadius(const BodyPlanSettings& s, spectral::Segment segment) {
+  using spectral::Segment;
+  switch (segment) {
+    case Segment::kHead:
+      return s.radius_head;
+    case Segment::kTrunk:
+      return s.radius_trunk;
+    case Segment::kUpperArm:
+      return s.radius_upper_arm;
+    case Segment::kForearm:
+      return s.radius_forearm;
+    case Segment::kHand:
+      return s.radius_hand;
+    case Segment::kThigh:
+      return s.radius_thigh;
+    case Segment::kShank:
+      return s.radius_shank;
+    case Segment::kFoot:
+      return s.radius_foot;
+    default:
+      return s.radius_other;
+  }
+}
+
+double shapeVolume(const Shape& shape) {
+  const double pi = std::numbers::pi;
+  switch (shape.type) {
+    case ShapeType::kCapsule:
+      return pi * shape.radius * shape.radius * 2.0 * shape.half_length +
+             4.0 / 3.0 * pi * shape.radius * shape.radius * shape.radius;
+    case ShapeType::kBox:
+      return 8.0 * shape.half_extents.x * shape.half_extents.y * shape.half_extents.z;
+    case ShapeType::kSphere:
+      return 4.0 / 3.0 * pi * shape.radius * shape.radius * shape.radius;
+  }
+  return 0.0;
+}
+
+// Principal inertia of a uniform shape of `mass` in its own frame, kg m^2.
+glm::dvec3 shapeInertia(const Shape& shape, double mass) {
+  const double r = shape.radius;
+  switch (shape.type) {
+    case ShapeType::kCapsule: {
+      const double h = 2.0 * shape.half_length;
+      const double vc = h;  // proportional volumes: cylinder pi r^2 h, caps 4/3 pi r^3
+      const double vs = 4.0 / 3.0 * r;
+      const double mc = mass * vc / (vc + vs);
+      const double ms = mass - mc;
+      const double axial = mc * r * r / 2.0 + ms * 2.0 * r * r / 5.0;
+      const double perp = mc * (h * h / 12.0 + r * r / 4.0) +
+                          ms * (2.0 * r * r / 5.0 + h * h / 4.0 + 3.0 * h * r / 8.0);
+      return {perp, axial, perp};
+    }
+    case ShapeType::kBox: {
+      const glm::dvec3 e = shape.half_extents;
+      return {mass / 3.0 * (e.y * e.y + e.z * e.z), mass / 3.0 * (e.x * e.x + e.z * e.z),
+              mass / 3.0 * (e.x * e.x + e.y * e.y)};
+    }
+    case ShapeType::kSphere: {
+      const double i = 0.4 * mass * r * r;
+      return {i, i, i};
+    }
+  }
+  return glm::dvec3(0.0);
+}
+
+}  // namespace
+
+const char* jointTypeName(JointType type) {
+  switch (type) {
+    case JointType::kBase:
+      return "base";
+    case JointType::kFixed:
+      return "fixed";
+    case JointType::kHinge:
+      return "hinge";
+    case JointType::kBall:
+      return "ball";
+  }
+  return "?";
+}
+
+int dofCount(JointType type) {
+  switch (type) {
+    case JointType::kHinge:
+      return 1;
+    case JointType::kBall:
+      return 3;
+    default:
+      return 0;
+  }
+}
+
+glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double angle) {
+  switch (link.type) {
+    case JointType::kBall:
+      return link.zero_rotation * q;
+    case JointType::kHinge:
+      return link.zero_rotation * glm::angleAxis(angle, link.hinge_axis);
+    default:
+      return link.zero_rotation;
+  }
+}
+
+Status BodyPlanSettings::validate() const {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  auto nonNegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  if (!positive(reference_size_m)) return Status::error("reference_size_m must be > 0");
+  if (!nonNegative(min_segment_length_m)) return Status::error("min_segment_length_m must be >= 0");
+  if (!(hinge_dominance >= 0.0 && hinge_dominance <= 1.0))
+    return Status::error("hinge_dominance must be in 0..1");
+  if (!nonNegative(fixed_range_rad)) return Status::error("fixed_range_rad must be >= 0");
+  if (!nonNegative(limit_margin_rad)) return Status::error("limit_margin_rad must be >= 0");
+  if (!positive(human_mass_kg)) return Status::error("human_mass_kg must be > 0");
+  if (!positive(density_kg_m3)) return Status::error("density_kg_m3 must be > 0");
+  if (!(std::isfinite(min_link_mass_fraction) && min_link_mass_fraction >= 0.0 &&
+        min_link_mass_fraction < 0.1))
+    return Status::error("min_link_mass_fraction must be in [0, 0.1)");
+  const std::pair<const char*, double> radii[] = {
+      {"radius_head", radius_head},           {"radius_trunk", radius_trunk},
+      {"radius_upper_arm", radius_upper_arm}, {"radius_forearm", radius_forearm},
+      {"radius_hand", radius_hand},           {"radius_thigh", radius_thigh},
+      {"radius_shank", radius_shank},         {"radius_foot", radius_foot},
+      {"radius_other", radius_other}};
+  for (const auto& [name, value] : radii)
+    if (!positive(value)) return Status::error(std::string(name) + " must be > 0");
+  if (Status s = mass_table.validate(); !s.ok()) return Status::error("mass_table: " + s.message());
+  return Status();
+}
+
+int BodyPlan::dofCount() const {
+  int n = 0;
+  for (const Link& link : links) n += physics::dofCount(link.type);
+  return n;
+}
+
+std::vector<int> BodyPlan::dofOffsets() const {
+  std::vector<int> offsets(links.size(), 0);
+  int n = 0;
+  for (size_t i = 0; i < links.size(); ++i) {
+    offsets[i] = n;
+    n += physics::dofCount(links[i].type);
+  }
+  return offsets;
+}
+
+Status BodyPlan::validate() const {
+  if (links.empty()) return Status::error("body plan has no links");
+  double sum = 0.0;
+  for (size_t i = 0; i < links.size(); ++i) {
+    const Link& link = links[i];
+    const std::string where = "link " + std::to_string(i) + " (" + link.name + "): ";
+    if (i == 0 && (link.parent != -1 || link.type != JointType::kBase))
+      return Status::error(where + "link 0 must be the base with parent -1");
+    if (i > 0 && (link.parent < 0 || link.parent >= static_cast<int>(i)))
+      return Status::error(where + "parent must be an earlier link");
+    if (i > 0 && link.type == JointType::kBase)
+      return Status::error(where + "type base is only for link 0");
+    if (!(std::isfinite(link.mass_kg) && link.mass_kg > 0.0))
+      return Status::error(where + "mass_kg must be > 0");
+    if (!finite(link.inertia) || link.inertia.x <= 0.0 || link.inertia.y <= 0.0 ||
+        link.inertia.z <= 0.0)
+      return Status::error(where + "inertia must be > 0 on every axis");
+    if (!finite(link.pivot)) return Status::error(where + "pivot must be finite");
+    if (!finite(link.com)) return Status::error(where + "com must be finite");
+    if (std::abs(glm::length(link.zero_rotation) - 1.0) > 1e-6)
+      return Status::error(where + "zero_rotation must be a unit quaternion");
+    if (link.type == JointType::kHinge) {
+      if (std::abs(glm::length(link.hinge_axis) - 1.0) > 1e-6)
+        return Status::error(where + "hinge_axis must be a unit vector");
+      if (!(link.hinge_lower < link.hinge_upper))
+        return Status::error(where + "hinge_lower must be < hinge_upper");
+    }
+    const Shape& s = link.shape;
+    if (!(s.radius > 0.0) || !(s.half_length >= 0.0) || !(s.half_extents.x > 0.0) ||
+        !(s.half_extents.y > 0.0) || !(s.half_extents.z > 0.0) || !finite(s.center))
+      return Status::error(where + "shape sizes must be > 0 and finite");
+    sum += link.mass_kg;
+  }
+  if (std::abs(sum - total_mass_kg) > 1e-6 * std::max(1.0, sum))
+    return Status::error("total_mass_kg " + std::to_string(total_mass_kg) +
+                         " differs from the sum of link masses " + std::to_string(sum));
+  for (size_t j = 0; j < link_of_joint.size(); ++j)
+    if (link_of_joint[j] < 0 || link_of_joint[j] >= static_cast<int>(links.size()))
+      return Status::error("link_of_joint[" + std::to_string(j) + "] is not a link");
+  return Status();
+}
+
+Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
+                               const motion::Clip* observed_motion,
+                               const BodyPlanSettings& settings) {
+  if (Status s = settings.validate(); !s.ok())
+    return Status::error("body plan settings: " + s.message());
+  if (Status s = skeleton.validate(); !s.ok()) return Status::error("skeleton: " + s.message());
+  const int n = skeleton.jointCount();
+  if (n == 0) return Status::error("skeleton: no joints");
+  for (int j = 1; j < n; ++j)
+    if (skeleton.parents[j] == motion::kNoParent)
+      return Status::error("skeleton: joint " + skeleton.names[j] +
+                           " is a second root; a simulated character needs one root");
+  if (observed_motion != nullptr) {
+    if (Status s = observed_motion->validate(skeleton); !s.ok())
+      return Status::error("observed motion: " + s.message());
+  }
+  const motion::Clip rest = motion::restClip(skeleton, 1, 1.0 / 30.0);
+  const motion::Clip& clip = observed_motion != nullptr ? *observed_motion : rest;
+
+  BodyPlan plan;
+  plan.frozen_rotations.resize(n);
+  for (int j = 0; j < n; ++j) plan.frozen_rotations[j] = glm::normalize(clip.rotation(0, j));
+
+  std::vector<glm::dmat4> world(n);
+  motion::worldTransforms(skeleton, clip, 0, world);
+  std::vector<spectral::Foot> feet;
+  if (auto found = spectral::findFeet(skeleton, clip); found.ok()) feet = found.value();
+  const spectral::MassDistribution masses =
+      spectral::massDistribution(skeleton, feet, settings.mass_table);
+  std::vector<char> is_foot(n, 0);
+  for (const spectral::Foot& f : feet) is_foot[f.joint] = 1;
+
+  std::vector<std::vector<int>> children(n);
+  for (int j = 1; j < n; ++j) children[skeleton.parents[j]].push_back(j);
+
+  // The base: skip a massless root chain (a root at the origin above the pelvis).
+  int base = 0;
+  plan.base_chain.push_back(0);
+  while (masses.segments[base] == spectral::Segment::kNone && children[base].size() == 1) {
+    base = children[base][0];
+    plan.base_chain.push_back(base);
+  }
+
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (int j = base; j < n; ++j) {  // joints above the base (a root at the origin) do not count
+    const glm::dvec3 p(world[j][3]);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    if (skeleton.end_sites[j]) {
+      const glm::dvec3 e = transformPoint(world[j], *skeleton.end_sites[j]);
+      lo = glm::min(lo, e);
+      hi = glm::max(hi, e);
+    }
+  }
+  const glm::dvec3 extent = hi - lo;
+  plan.size_m = std::max({extent.x, extent.y, extent.z});
+  if (!(plan.size_m > 1e-6)) return Status::error("skeleton: all joints at one point; no size");
+  const double scale = plan.size_m / settings.reference_size_m;
+  const double min_length = settings.min_segment_length_m * scale;
+
+  // Merging, parents first: whole subtrees by name (fingers, hands), single joints by length.
+  std::vector<char> merged(n, 0), subtree_merged(n, 0);
+  int merged_count = 0;
+  for (int j = base + 1; j < n; ++j) {
+    const int p = skeleton.parents[j];
+    if (p < base) continue;  // cannot happen for a single-child base chain
+    const bool keep = nameHasAny(skeleton.names[j], settings.keep_names);
+    if (is_foot[j] || keep) continue;
+    bool m = subtree_merged[p] != 0;
+    if (!m && (nameHasAny(skeleton.names[j], settings.merge_names) ||
+               masses.segments[j] == spectral::Segment::kHand)) {
+      subtree_merged[j] = 1;
+      m = true;
+    }
+    if (subtree_merged[p]) subtree_merged[j] = 1;
+    if (!m && glm::length(skeleton.offsets[j]) < min_length) m = true;
+    if (!m && children[j].empty()) {
+      const double leaf = skeleton.end_sites[j] ? glm::length(*skeleton.end_sites[j]) : 0.0;
+      if (leaf < min_length) m = true;
+    }
+    if (!m && settings.merge_short_trunk &&
+        (masses.segments[j] == spectral::Segment::kTrunk ||
+         masses.segments[j] == spectral::Segment::kHead)) {
+      // Distance from the pivot of the link the parent belongs to, at the first pose.
+      int owner = p;
+      while (owner > base && merged[owner]) owner = skeleton.parents[owner];
+      const double distance = glm::length(glm::dvec3(world[j][3]) - glm::dvec3(world[owner][3]));
+      const double diameter = 2.0 * segmentRadius(settings, masses.segments[owner]) * plan.size_m;
+      if (distance < diameter) m = true;
+    }
+    merged[j] = m ? 1 : 0;
+    merged_count += m ? 1 : 0;
+  }
+  if (merged_count > 0)
+    plan.notes.push_back(std::to_string(merged_count) + " joints merged into their parents");
+
+  // Links in joint order (parents first).
+  plan.link_of_joint.assign(n, 0);
+  {
+    Link b;
+    b.name = skeleton.names[base];
+    b.joint = base;
+    b.parent = -1;
+    b.type = JointType::kBase;
+    b.segment = masses.segments[base];
+    plan.links.push_back(b);
+  }
+  for (int j = base + 1; j < n; ++j) {
+    if (merged[j]) {
+      plan.link_of_joint[j] = plan.link_of_joint[skeleton.parents[j]];
+      continue;
+    }
+    Link link;
+    link.name = skeleton.names[j];
+    link.joint = j;
+    link.segment = masses.segments[j];
+    link.foot = is_foot[j] != 0;
+    int a = skeleton.parents[j];
+    link.chain.push_back(j);
+    while (a != plan.links[plan.link_of_joint[a]].joint) {
+      link.chain.insert(link.chain.begin(), a);
+      a = skeleton.parents[a];
+    }
+    link.parent = plan.link_of_joint[a];
+    plan.link_of_joint[j] = static_cast<int>(plan.links.size());
+    plan.links.push_back(std::move(link));
+  }
+  const int link_count = static_cast<int>(plan.links.size());
+
+  // Left-to-right direction for hinge axes without a clip: from the feet's sides, else X.
+  glm::dvec3 lateral_world(1.0, 0.0, 0.0);
+  {
+    glm::dvec3 left(0.0), right(0.0);
+    int nl = 0, nr = 0;
+    for (const spectral::Foot& f : feet) {
+      const glm::dvec3 p(world[f.joint][3]);
+      if (f.side == spectral::Side::kLeft) left += p, ++nl;
+      if (f.side == spectral::Side::kRight) right += p, ++nr;
+    }
+    if (nl > 0 && nr > 0) {
+      glm::dvec3 d = left / double(nl) - right / double(nr);
+      d.y = 0.0;
+      if (glm::length(d) > 1e-6) lateral_world = glm::normalize(d);
+    }
+  }
+
+  // Pivots, zero rotations, joint types and limits.
+  for (int li = 1; li < link_count; ++li) {
+    Link& link = plan.links[li];
+    glm::dmat4 t(1.0);
+    for (size_t k = 0; k < link.chain.size(); ++k) {
+      const int a = link.chain[k];
+      const bool last = k + 1 == link.chain.size();
+      const glm::dquat r = last ? skeleton.rest_rotations[a] : plan.frozen_rotations[a];
+      t = t * glm::translate(glm::dmat4(1.0), skeleton.offsets[a]) * glm::mat4_cast(r);
+    }
+    link.pivot = glm::dvec3(t[3]);
+    link.zero_rotation = glm::normalize(glm::quat_cast(glm::dmat3(t)));
+
+    const bool hinge_candidate = link.segment == spectral::Segment::kShank ||
+                                 link.segment == spectral::Segment::kForearm ||
+                                 nameHasAny(link.name, settings.hinge_names);
+    const glm::dvec3 lateral_link =
+        glm::normalize(glm::inverse(glm::quat_cast(glm::dmat3(world[link.joint]))) * lateral_world);
+    if (observed_motion == nullptr) {
+      link.type = hinge_candidate ? JointType::kHinge : JointType::kBall;
+      link.hinge_axis = lateral_link;
+      continue;
+    }
+    // Observed coordinates: q_f = zero^-1 * (product of the chain's local rotations at frame f).
+    const glm::dquat zero_inv = glm::inverse(link.zero_rotation);
+    std::vector<glm::dquat> qs(clip.frame_count);
+    glm::dquat previous = kIdentity;
+    double max_from_first = 0.0;
+    glm::dmat3 moment(0.0);
+    glm::dvec3 vlo(std::numeric_limits<double>::max()), vhi(-std::numeric_limits<double>::max());
+    for (int f = 0; f < clip.frame_count; ++f) {
+      glm::dquat rel = kIdentity;
+      for (int a : link.chain) rel = rel * clip.rotation(f, a);
+      glm::dquat q = glm::normalize(zero_inv * rel);
+      if (glm::dot(q, previous) < 0.0) q = -q;
+      previous = q;
+      qs[f] = q;
+      const double d = std::abs(glm::dot(q, qs[0]));
+      max_from_first = std::max(max_from_first, 2.0 * std::acos(std::min(1.0, d)));
+      const glm::dvec3 v = rotationVector(q);
+      moment += glm::outerProduct(v, v);
+      vlo = glm::min(vlo, v);
+      vhi = glm::max(vhi, v);
+    }
+    if (max_from_first < settings.fixed_range_rad) {
+      link.type = JointType::kFixed;
+      link.zero_rotation = glm::normalize(link.zero_rotation * qs[0]);
+      continue;
+    }
+    link.ball_lower = vlo - settings.limit_margin_rad;
+    link.ball_upper = vhi + settings.limit_margin_rad;
+    link.type = JointType::kBall;
+    if (hinge_candidate) {
+      glm::dvec3 axis;
+      double share = 0.0;
+      principalAxis(moment, axis, share);
+      if (share >= settings.hinge_dominance) {
+        if (glm::dot(axis, lateral_link) < 0.0) axis = -axis;
+        link.type = JointType::kHinge;
+        link.hinge_axis = glm::normalize(axis);
+        double alo = std::numbers::pi, ahi = -std::numbers::pi;
+        for (const glm::dquat& q : qs) {
+          const double angle = hingeAngle(q, link.hinge_axis);
+          alo = std::min(alo, angle);
+          ahi = std::max(ahi, angle);
+        }
+        link.hinge_lower = std::max(-std::numbers::pi, alo - settings.limit_margin_rad);
+        link.hinge_upper = std::min(std::numbers::pi, ahi + settings.limit_margin_rad);
+      } else {
+        std::ostringstream note;
+        note.precision(2);
+        note << link.name << ": ball joint, not a hinge (main axis carries " << share
+             << " of the observed rotation, below " << settings.hinge_dominance << ")";
+        plan.notes.push_back(note.str());
+      }
+    }
+  }
+
+  // Shapes from the points each link holds, in its own frame at the first pose.
+  for (int li = 0; li < link_count; ++li) {
+    Link& link = plan.links[li];
+    const glm::dmat4 to_link = glm::inverse(world[link.joint]);
+    std::vector<glm::dvec3> points_world;
+    for (int j = link.joint; j < n; ++j) {
+      const int owner = plan.link_of_joint[j];
+      const bool own = owner == li && j != link.joint;
+      const bool child_pivot =
+          owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
+      if (own || child_pivot) points_world.emplace_back(world[j][3]);
+      if (owner == li && skeleton.end_sites[j])
+        points_world.push_back(transformPoint(world[j], *skeleton.end_sites[j]));
+    }
+    const double radius = segmentRadius(settings, link.segment) * plan.size_m;
+    Shape shape;
+    shape.radius = radius;
+    if (link.foot) {
+      const glm::dvec3 ankle(world[link.joint][3]);
+      glm::dvec3 forward(0.0);
+      double far = 0.0, bottom = ankle.y;
+      for (const glm::dvec3& p : points_world) {
+        glm::dvec3 d = p - ankle;
+        d.y = 0.0;
+        if (glm::length(d) > far) far = glm::length(d), forward = d;
+        bottom = std::min(bottom, p.y);
+      }
+      if (far < 1e-6) {
+        forward = glm::normalize(glm::cross(lateral_world, kUp));
+        far = 4.0 * radius;
+      } else {
+        forward /= far;
+      }
+      const glm::dvec3 side = glm::normalize(glm::cross(kUp, forward));
+      const double heel = 1.5 * radius;
+      if (ankle.y - bottom < 1.5 * radius) bottom = ankle.y - 1.5 * radius;
+      const double top = ankle.y;
+      const glm::dvec3 center_world =
+          ankle + forward * (0.5 * (far - heel)) + kUp * (0.5 * (top + bottom) - ankle.y);
+      shape.type = ShapeType::kBox;
+      shape.half_extents = glm::dvec3(radius, 0.5 * (top - bottom), 0.5 * (far + heel));
+      const glm::dquat world_rotation = glm::quat_cast(glm::dmat3(side, kUp, forward));
+      shape.center = transformPoint(to_link, center_world);
+      shape.rotation = glm::normalize(glm::inverse(glm::quat_cast(glm::dmat3(world[link.joint]))) *
+                                      world_rotation);
+    } else if (points_world.empty()) {
+      shape.type = ShapeType::kSphere;
+    } else if (points_world.size() >= 2 && (link.segment == spectral::Segment::kTrunk || li == 0)) {
+      // A trunk link spans its points (hips, spine, shoulders, neck): a box around them padded
+      // by the trunk radius. A sphere at their centroid would make a light, tiny-inertia torso
+      // that explicit PD cannot hold stiffly against the legs.
+      glm::dvec3 plo(0.0), phi(0.0);
+      for (const glm::dvec3& p : points_world) {
+        const glm::dvec3 q = transformPoint(to_link, p);
+        plo = glm::min(plo, q);
+        phi = glm::max(phi, q);
+      }
+      shape.type = ShapeType::kBox;
+      shape.center = 0.5 * (plo + phi);
+      shape.half_extents = 0.5 * (phi - plo) + glm::dvec3(radius);
+    } else {
+      glm::dvec3 end(0.0);
+      for (const glm::dvec3& p : points_world) end += transformPoint(to_link, p);
+      end /= double(points_world.size());
+      const double length = glm::length(end);
+      shape.center = 0.5 * end;
+      if (length <= 2.0 * radius) {
+        shape.type = ShapeType::kSphere;
+      } else {
+        shape.type = ShapeType::kCapsule;
+        shape.half_length = 0.5 * length - radius;
+        shape.rotation = rotationFromY(end / length);
+      }
+    }
+    link.shape = shape;
+    link.com = shape.center;
+  }
+
+  // Masses: de Leva fractions for a human-sized biped, shape volume otherwise.
+  bool has_arms = false, has_legs = false;
+  for (spectral::Segment s : masses.segments) {
+    has_arms = has_arms || s == spectral::Segment::kUpperArm;
+    has_legs = has_legs || s == spectral::Segment::kThigh;
+  }
+  int named_feet = 0;
+  for (const spectral::Foot& f : feet) named_feet += f.by_name ? 1 : 0;
+  plan.human = has_arms && has_legs && named_feet == 2 && plan.size_m > 1.0 && plan.size_m < 2.5;
+  std::vector<double> fraction(link_count, 0.0);
+  if (plan.human)
+    for (int j = 0; j < n; ++j) fraction[plan.link_of_joint[j]] += masses.fractions[j];
+  double total = 0.0;
+  for (int li = 0; li < link_count; ++li) {
+    Link& link = plan.links[li];
+    const double by_volume = shapeVolume(link.shape) * settings.density_kg_m3;
+    link.mass_kg = fraction[li] > 0.0 ? fraction[li] * settings.human_mass_kg : by_volume;
+    total += link.mass_kg;
+  }
+  // Light links (a tail tip, a paw) against a heavy body make the articulated solve and the
+  // contacts stiff; no link is lighter than this share of the body.
+  const double floor_mass = settings.min_link_mass_fraction * total;
+  for (Link& link : plan.links) {
+    if (link.mass_kg >= floor_mass) continue;
+    total += floor_mass - link.mass_kg;
+    link.mass_kg = floor_mass;
+  }
+  if (plan.human) {
+    const double k = settings.human_mass_kg / total;
+    total = 0.0;
+    for (Link& link : plan.links) total += (link.mass_kg *= k);
+  }
+  plan.total_mass_kg = total;
+
+  // Inertia from the shapes, rotated into the link frame (diagonal kept).
+  for (Link& link : plan.links) {
+    const glm::dvec3 principal = shapeInertia(link.shape, link.mass_kg);
+    const glm::dmat3 r = glm::mat3_cast(link.shape.rotation);
+    const glm::dmat3 tensor =
+        r * glm::dmat3(principal.x, 0, 0, 0, principal.y, 0, 0, 0, principal.z) * glm::transpose(r);
+    const double floor = 1e-7;
+    link.inertia = glm::dvec3(std::max(tensor[0][0], floor), std::max(tensor[1][1], floor),
+                              std::max(tensor[2][2], floor));
+  }
+
+  // Which links carry the body: their subtree holds a foot.
+  for (int li = link_count - 1; li >= 0; --li) {
+    Link& link = plan.links[li];
+    link.supports = link.supports || link.foot;
+    if (link.parent >= 0 && link.supports) plan.links[link.parent].supports = true;
+  }
+
+  if (Status s = plan.validate(); !s.ok()) return Status::error("body plan: " + s.message());
+  return plan;
+}
+
+LinkPose linkPoseFromSkeleton(const BodyPlan& plan,
+                              [[maybe_unused]] const motion::Skeleton& skeleton,
+                              std::span<const glm::dquat> rotations,
+                              std::span<const glm::dvec3> translations) {
+  LinkPose pose;
+  glm::dmat4 base(1.0);
+  for (int j : plan.base_chain) {
+    base = base * glm::translate(glm::dmat4(1.0), translations[j]) *
+           glm::mat4_cast(glm::normalize(rotations[j]));
+  }
+  pose.base_position = glm::dvec3(base[3]);
+  pose.base_rotation = glm::normalize(glm::quat_cast(glm::dmat3(base)));
+  pose.rotations.assign(plan.links.size(), kIdentity);
+  pose.angles.assign(plan.links.size(), 0.0);
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const Link& link = plan.links[li];
+    if (link.type == JointType::kFixed) continue;
+    glm::dquat rel = kIdentity;
+    for (int a : link.chain) rel = rel * rotations[a];
+    const glm::dquat q = positiveW(glm::normalize(glm::inverse(link.zero_rotation) * rel));
+    if (link.type == JointType::kBall)
+      pose.rotations[li] = q;
+    else
+      pose.angles[li] = hingeAngle(q, link.hinge_axis);
+  }
+  return pose;
+}
+
+}  // namespace sinew::physics

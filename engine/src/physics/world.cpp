@@ -1,0 +1,572 @@
+#include "sinew/physics/world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+namespace sinew::physics {
+namespace {
+
+// Collision groups: the ground collides with the character; the character's links do not collide
+// with each other (self-collision off in this slice).
+constexpr int kGroundGroup = 1;
+constexpr int kCharacterGroup = 2;
+
+btVector3 toBt(const glm::dvec3& v) {
+  return btVector3(v.x, v.y, v.z);
+}
+glm::dvec3 toGlm(const btVector3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+btQuaternion toBt(const glm::dquat& q) {
+  return btQuaternion(q.x, q.y, q.z, q.w);
+}
+glm::dquat toGlm(const btQuaternion& q) {
+  return glm::dquat(q.w(), q.x(), q.y(), q.z());
+}
+
+double lowestPoint(const Shape& shape, const glm::dmat4& link_to_world) {
+  const glm::dvec3 c(link_to_world * glm::dvec4(shape.center, 1.0));
+  const glm::dmat3 r = glm::dmat3(link_to_world) * glm::mat3_cast(shape.rotation);
+  switch (shape.type) {
+    case ShapeType::kSphere:
+      return c.y - shape.radius;
+    case ShapeType::kCapsule: {
+      const glm::dvec3 axis = r[1] * shape.half_length;
+      return std::min(c.y + axis.y, c.y - axis.y) - shape.radius;
+    }
+    case ShapeType::kBox: {
+      double y = 0.0;
+      for (int k = 0; k < 3; ++k) y += std::abs(r[k].y) * shape.half_extents[k];
+      return c.y - y;
+    }
+  }
+  return c.y;
+}
+
+}  // namespace
+
+Status WorldSettings::validate() const {
+  if (!(std::isfinite(step_hz) && step_hz >= 30.0 && step_hz <= 10000.0))
+    return Status::error("step_hz must be in 30..10000");
+  if (!(std::isfinite(gravity_m_s2) && gravity_m_s2 >= 0.0))
+    return Status::error("gravity_m_s2 must be >= 0");
+  if (!(std::isfinite(ground_friction) && ground_friction >= 0.0))
+    return Status::error("ground_friction must be >= 0");
+  if (!std::isfinite(ground_height_m)) return Status::error("ground_height_m must be finite");
+  if (solver_iterations < 1 || solver_iterations > 1000)
+    return Status::error("solver_iterations must be in 1..1000");
+  if (!(std::isfinite(ground_clearance_m) && ground_clearance_m >= 0.0))
+    return Status::error("ground_clearance_m must be >= 0");
+  return Status();
+}
+
+// Members are declared in construction order, so they are destroyed in reverse; the destructor
+// first removes every object from the Bullet world, which must outlive them while they are in it.
+struct World::Impl {
+  BodyPlan plan;
+  WorldSettings settings;
+  double dt = 0.0;
+  long long steps = 0;
+  std::vector<int> dof_offsets;
+  int dofs = 0;
+
+  std::unique_ptr<btDefaultCollisionConfiguration> config;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  std::unique_ptr<btDbvtBroadphase> broadphase;
+  std::unique_ptr<btMultiBodyConstraintSolver> solver;
+  std::unique_ptr<btMultiBodyDynamicsWorld> world;
+  std::unique_ptr<btStaticPlaneShape> ground_shape;
+  std::unique_ptr<btCollisionObject> ground;
+  std::vector<std::unique_ptr<btCollisionShape>> child_shapes;
+  std::vector<std::unique_ptr<btCompoundShape>> shapes;
+  std::unique_ptr<btMultiBody> body;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // (links), base first
+  std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
+
+  std::vector<std::uint8_t> contacts;
+  std::vector<double> normal_forces;
+  glm::dvec3 contact_impulse{0.0};
+  ExternalLoads loads;
+
+  ~Impl() {
+    if (!world) return;
+    for (auto& limit : limits) world->removeMultiBodyConstraint(limit.get());
+    if (body) world->removeMultiBody(body.get());
+    for (auto& collider : colliders) world->removeCollisionObject(collider.get());
+    if (ground) world->removeCollisionObject(ground.get());
+  }
+
+  // Link index in Bullet (-1 base) for plan link li.
+  static int bulletLink(int li) { return li - 1; }
+
+  void refreshTransforms() {
+    btAlignedObjectArray<btQuaternion> scratch_q;
+    btAlignedObjectArray<btVector3> scratch_m;
+    body->forwardKinematics(scratch_q, scratch_m);
+    body->updateCollisionObjectWorldTransforms(scratch_q, scratch_m);
+  }
+
+  glm::dmat4 linkTransform(int li) const {
+    const btTransform& t = colliders[li]->getWorldTransform();
+    const glm::dquat r = toGlm(t.getRotation());
+    const glm::dvec3 origin = toGlm(t.getOrigin()) - r * plan.links[li].com;
+    glm::dmat4 m = glm::mat4_cast(r);
+    m[3] = glm::dvec4(origin, 1.0);
+    return m;
+  }
+
+  void readContacts() {
+    std::fill(contacts.begin(), contacts.end(), std::uint8_t{0});
+    std::fill(normal_forces.begin(), normal_forces.end(), 0.0);
+    contact_impulse = glm::dvec3(0.0);
+    const int manifolds = dispatcher->getNumManifolds();
+    for (int m = 0; m < manifolds; ++m) {
+      const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+      const auto* a = btMultiBodyLinkCollider::upcast(manifold->getBody0());
+      const auto* b = btMultiBodyLinkCollider::upcast(manifold->getBody1());
+      const btMultiBodyLinkCollider* character = a != nullptr ? a : b;
+      if (character == nullptr) continue;
+      const double sign = a != nullptr ? 1.0 : -1.0;  // the normal points from B to A
+      for (int p = 0; p < manifold->getNumContacts(); ++p) {
+        const btManifoldPoint& pt = manifold->getContactPoint(p);
+        std::uint8_t& count = contacts[static_cast<size_t>(character->m_link + 1)];
+        if ((pt.getAppliedImpulse() > 0.0 || pt.getDistance() <= 0.0) && count < 255) ++count;
+        normal_forces[static_cast<size_t>(character->m_link + 1)] += pt.getAppliedImpulse() / dt;
+        contact_impulse += sign * (toGlm(pt.m_normalWorldOnB) * pt.getAppliedImpulse() +
+                                   toGlm(pt.m_lateralFrictionDir1) * pt.m_appliedImpulseLateral1 +
+                                   toGlm(pt.m_lateralFrictionDir2) * pt.m_appliedImpulseLateral2);
+      }
+    }
+  }
+
+  void recordExternalLoads() {
+    loads.max_base_force_n =
+        std::max(loads.max_base_force_n, double(body->getBaseForce().length()));
+    loads.max_base_torque_nm =
+        std::max(loads.max_base_torque_nm, double(body->getBaseTorque().length()));
+    for (int i = 0; i < body->getNumLinks(); ++i) {
+      loads.max_link_force_n =
+          std::max(loads.max_link_force_n, double(body->getLinkForce(i).length()));
+      loads.max_link_torque_nm =
+          std::max(loads.max_link_torque_nm, double(body->getLinkTorque(i).length()));
+    }
+  }
+};
+
+World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+World::~World() = default;
+
+Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPose& initial,
+                                             const WorldSettings& settings) {
+  if (Status s = settings.validate(); !s.ok())
+    return Status::error("world settings: " + s.message());
+  if (Status s = plan.validate(); !s.ok()) return Status::error("body plan: " + s.message());
+  const size_t n = plan.links.size();
+  if (initial.rotations.size() != n || initial.angles.size() != n)
+    return Status::error("initial pose: rotations and angles need one entry per link (" +
+                         std::to_string(n) + ")");
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(initial.angles[i]) ||
+        !(std::abs(glm::length(initial.rotations[i]) - 1.0) < 1e-6))
+      return Status::error("initial pose: link " + std::to_string(i) + " (" + plan.links[i].name +
+                           ") has a non-finite angle or a non-unit rotation");
+  if (!std::isfinite(initial.base_position.x) || !std::isfinite(initial.base_position.y) ||
+      !std::isfinite(initial.base_position.z) ||
+      !(std::abs(glm::length(initial.base_rotation) - 1.0) < 1e-6))
+    return Status::error("initial pose: base position must be finite, base rotation unit");
+
+  auto impl = std::make_unique<Impl>();
+  Impl& w = *impl;
+  w.plan = plan;
+  w.settings = settings;
+  w.dt = 1.0 / settings.step_hz;
+  w.dof_offsets = plan.dofOffsets();
+  w.dofs = plan.dofCount();
+  w.contacts.assign(n, 0);
+  w.normal_forces.assign(n, 0.0);
+
+  w.config = std::make_unique<btDefaultCollisionConfiguration>();
+  w.dispatcher = std::make_unique<btCollisionDispatcher>(w.config.get());
+  w.broadphase = std::make_unique<btDbvtBroadphase>();
+  w.solver = std::make_unique<btMultiBodyConstraintSolver>();
+  w.world = std::make_unique<btMultiBodyDynamicsWorld>(w.dispatcher.get(), w.broadphase.get(),
+                                                       w.solver.get(), w.config.get());
+  w.world->setGravity(btVector3(0.0, -settings.gravity_m_s2, 0.0));
+  w.world->getSolverInfo().m_numIterations = settings.solver_iterations;
+
+  w.ground_shape =
+      std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), settings.ground_height_m);
+  w.ground = std::make_unique<btCollisionObject>();
+  w.ground->setCollisionShape(w.ground_shape.get());
+  w.ground->setFriction(settings.ground_friction);
+  w.ground->setRestitution(0.0);
+  w.world->addCollisionObject(w.ground.get(), kGroundGroup, kCharacterGroup);
+
+  const Link& base = plan.links[0];
+  w.body = std::make_unique<btMultiBody>(static_cast<int>(n) - 1, base.mass_kg, toBt(base.inertia),
+                                         /*fixedBase=*/false, /*canSleep=*/false);
+  btMultiBody& mb = *w.body;
+  for (size_t li = 1; li < n; ++li) {
+    const Link& link = plan.links[li];
+    const Link& parent = plan.links[static_cast<size_t>(link.parent)];
+    const int i = Impl::bulletLink(static_cast<int>(li));
+    const btQuaternion parent_to_this = toBt(glm::inverse(link.zero_rotation));
+    const btVector3 parent_com_to_pivot = toBt(link.pivot - parent.com);
+    const btVector3 pivot_to_com = toBt(link.com);
+    const int parent_index = Impl::bulletLink(link.parent);
+    switch (link.type) {
+      case JointType::kBall:
+        mb.setupSpherical(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
+                          parent_com_to_pivot, pivot_to_com, true);
+        break;
+      case JointType::kHinge:
+        mb.setupRevolute(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
+                         toBt(link.hinge_axis), parent_com_to_pivot, pivot_to_com, true);
+        break;
+      default:
+        mb.setupFixed(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
+                      parent_com_to_pivot, pivot_to_com, true);
+        break;
+    }
+  }
+  mb.finalizeMultiDof();
+  // Bullet damps multibody velocities by default (0.04): an external effect. Off.
+  mb.setLinearDamping(0.0);
+  mb.setAngularDamping(0.0);
+  mb.setHasSelfCollision(false);
+  mb.setUseGyroTerm(true);
+
+  auto setPose = [&](const glm::dvec3& base_position) {
+    const glm::dquat r = glm::normalize(initial.base_rotation);
+    mb.setBasePos(toBt(base_position + r * base.com));
+    mb.setWorldToBaseRot(toBt(glm::inverse(r)));
+    mb.setBaseVel(btVector3(0, 0, 0));
+    mb.setBaseOmega(btVector3(0, 0, 0));
+    for (size_t li = 1; li < n; ++li) {
+      const int i = Impl::bulletLink(static_cast<int>(li));
+      const Link& link = plan.links[li];
+      if (link.type == JointType::kBall) {
+        const glm::dquat q = glm::normalize(initial.rotations[li]);
+        const double pos[4] = {q.x, q.y, q.z, q.w};
+        const double zero[3] = {0.0, 0.0, 0.0};
+        mb.setJointPosMultiDof(i, pos);
+        mb.setJointVelMultiDof(i, zero);
+      } else if (link.type == JointType::kHinge) {
+        mb.setJointPos(i, initial.angles[li]);
+        mb.setJointVel(i, 0.0);
+      }
+    }
+  };
+  setPose(initial.base_position);
+
+  // Colliders: one compound per link (the shape offset from the centre of mass frame).
+  for (size_t li = 0; li < n; ++li) {
+    const Link& link = plan.links[li];
+    std::unique_ptr<btCollisionShape> child;
+    switch (link.shape.type) {
+      case ShapeType::kCapsule:
+        child = std::make_unique<btCapsuleShape>(link.shape.radius, 2.0 * link.shape.half_length);
+        break;
+      case ShapeType::kBox:
+        child = std::make_unique<btBoxShape>(toBt(link.shape.half_extents));
+        break;
+      case ShapeType::kSphere:
+        child = std::make_unique<btSphereShape>(link.shape.radius);
+        break;
+    }
+    auto compound = std::make_unique<btCompoundShape>(false, 1);
+    compound->addChildShape(
+        btTransform(toBt(link.shape.rotation), toBt(link.shape.center - link.com)), child.get());
+    const int i = Impl::bulletLink(static_cast<int>(li));
+    auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, i);
+    collider->setCollisionShape(compound.get());
+    collider->setFriction(settings.ground_friction);
+    collider->setRestitution(0.0);
+    w.world->addCollisionObject(collider.get(), kCharacterGroup, kGroundGroup);
+    if (i < 0)
+      mb.setBaseCollider(collider.get());
+    else
+      mb.getLink(i).m_collider = collider.get();
+    w.child_shapes.push_back(std::move(child));
+    w.shapes.push_back(std::move(compound));
+    w.colliders.push_back(std::move(collider));
+  }
+  w.world->addMultiBody(&mb);
+
+  for (size_t li = 1; li < n; ++li) {
+    const Link& link = plan.links[li];
+    if (link.type != JointType::kHinge) continue;
+    auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(
+        &mb, Impl::bulletLink(static_cast<int>(li)), link.hinge_lower, link.hinge_upper);
+    w.world->addMultiBodyConstraint(limit.get());
+    w.limits.push_back(std::move(limit));
+  }
+
+  w.refreshTransforms();
+  if (settings.place_on_ground) {
+    double lowest = std::numeric_limits<double>::max();
+    for (size_t li = 0; li < n; ++li)
+      lowest = std::min(lowest,
+                        lowestPoint(plan.links[li].shape, w.linkTransform(static_cast<int>(li))));
+    glm::dvec3 base_position = initial.base_position;
+    base_position.y += settings.ground_height_m + settings.ground_clearance_m - lowest;
+    setPose(base_position);
+    w.refreshTransforms();
+  }
+  return std::unique_ptr<World>(new World(std::move(impl)));
+}
+
+void World::step(std::span<const double> joint_torques) {
+  Impl& w = *impl_;
+  btMultiBody& mb = *w.body;
+  // Nothing but joint torques may be applied: the accumulators must be empty here.
+  w.recordExternalLoads();
+  for (size_t li = 1; li < w.plan.links.size(); ++li) {
+    const int i = Impl::bulletLink(static_cast<int>(li));
+    const size_t o = static_cast<size_t>(w.dof_offsets[li]);
+    switch (w.plan.links[li].type) {
+      case JointType::kBall:
+        for (int d = 0; d < 3; ++d) mb.addJointTorqueMultiDof(i, d, joint_torques[o + d]);
+        break;
+      case JointType::kHinge:
+        mb.addJointTorque(i, joint_torques[o]);
+        break;
+      default:
+        break;
+    }
+  }
+  // maxSubSteps 0: exactly one step of dt, no interpolation, no accumulated remainder.
+  w.world->stepSimulation(w.dt, 0, w.dt);
+  ++w.steps;
+  w.readContacts();
+}
+
+double World::dt() const {
+  return impl_->dt;
+}
+double World::time() const {
+  return static_cast<double>(impl_->steps) * impl_->dt;
+}
+long long World::stepCount() const {
+  return impl_->steps;
+}
+int World::linkCount() const {
+  return static_cast<int>(impl_->plan.links.size());
+}
+int World::dofCount() const {
+  return impl_->dofs;
+}
+const BodyPlan& World::plan() const {
+  return impl_->plan;
+}
+
+void World::linkTransforms(std::span<glm::dmat4> out) const {
+  for (size_t li = 0; li < out.size() && li < impl_->plan.links.size(); ++li)
+    out[li] = impl_->linkTransform(static_cast<int>(li));
+}
+
+void World::linkCentres(std::span<glm::dvec3> out) const {
+  for (size_t li = 0; li < out.size() && li < impl_->colliders.size(); ++li)
+    out[li] = toGlm(impl_->colliders[li]->getWorldTransform().getOrigin());
+}
+
+LinkPose World::jointPositions() const {
+  const Impl& w = *impl_;
+  const btMultiBody& mb = *w.body;
+  LinkPose pose;
+  const glm::dmat4 base = w.linkTransform(0);
+  pose.base_position = glm::dvec3(base[3]);
+  pose.base_rotation = glm::normalize(glm::quat_cast(glm::dmat3(base)));
+  const size_t n = w.plan.links.size();
+  pose.rotations.assign(n, glm::dquat(1.0, 0.0, 0.0, 0.0));
+  pose.angles.assign(n, 0.0);
+  for (size_t li = 1; li < n; ++li) {
+    const int i = Impl::bulletLink(static_cast<int>(li));
+    if (w.plan.links[li].type == JointType::kBall) {
+      const btScalar* q = mb.getJointPosMultiDof(i);
+      pose.rotations[li] = glm::normalize(glm::dquat(q[3], q[0], q[1], q[2]));
+    } else if (w.plan.links[li].type == JointType::kHinge) {
+      pose.angles[li] = mb.getJointPos(i);
+    }
+  }
+  return pose;
+}
+
+void World::jointVelocities(std::span<double> out) const {
+  const Impl& w = *impl_;
+  for (size_t li = 1; li < w.plan.links.size(); ++li) {
+    const int dofs = physics::dofCount(w.plan.links[li].type);
+    const btScalar* v = w.body->getJointVelMultiDof(Impl::bulletLink(static_cast<int>(li)));
+    for (int d = 0; d < dofs; ++d) out[static_cast<size_t>(w.dof_offsets[li] + d)] = v[d];
+  }
+}
+
+std::vector<double> World::jointInverseInertia(std::span<const int> welded_links) {
+  btMultiBody& mb = *impl_->body;
+  const int dofs = mb.getNumDofs();
+  const size_t m = static_cast<size_t>(6 + dofs);
+  btAlignedObjectArray<btScalar> scratch_r;
+  btAlignedObjectArray<btVector3> scratch_v;
+  btAlignedObjectArray<btMatrix3x3> scratch_m;
+  // The articulated-body pass caches what calcAccelerationDeltasMultiDof needs. With dt = 0 it
+  // changes no velocity.
+  mb.computeAccelerationsArticulatedBodyAlgorithmMultiDof(0.0, scratch_r, scratch_v, scratch_m,
+                                                          false, false, false);
+  // Full inverse inertia F (base wrench and joint torques -> accelerations), m x m.
+  std::vector<double> full(m * m, 0.0);
+  std::vector<btScalar> force(m, 0.0), out(m, 0.0);
+  for (size_t j = 0; j < m; ++j) {
+    std::fill(force.begin(), force.end(), 0.0);
+    force[j] = 1.0;
+    mb.calcAccelerationDeltasMultiDof(force.data(), out.data(), scratch_r, scratch_v);
+    for (size_t i = 0; i < m; ++i) full[i * m + j] = out[i];
+  }
+  if (!welded_links.empty()) {
+    // Welding: F_c = F - F J^T (J F J^T)^-1 J F, J the welded links' spatial velocity rows.
+    const size_t rows = 6 * welded_links.size();
+    std::vector<double> jac(rows * m, 0.0);
+    std::vector<btScalar> row(m, 0.0);
+    size_t r = 0;
+    for (int li : welded_links) {
+      const btVector3 point =
+          impl_->colliders[static_cast<size_t>(li)]->getWorldTransform().getOrigin();
+      for (int k = 0; k < 6; ++k, ++r) {
+        btVector3 ang(0, 0, 0), lin(0, 0, 0);
+        (k < 3 ? ang : lin)[k % 3] = 1.0;
+        mb.fillConstraintJacobianMultiDof(Impl::bulletLink(li), point, ang, lin, row.data(),
+                                          scratch_r, scratch_v, scratch_m);
+        for (size_t c = 0; c < m; ++c) jac[r * m + c] = row[c];
+      }
+    }
+    // JF = J F (rows x m); A = JF J^T (rows x rows).
+    std::vector<double> jf(rows * m, 0.0), a(rows * rows, 0.0);
+    for (size_t i = 0; i < rows; ++i)
+      for (size_t k = 0; k < m; ++k) {
+        const double v = jac[i * m + k];
+        if (v == 0.0) continue;
+        for (size_t c = 0; c < m; ++c) jf[i * m + c] += v * full[k * m + c];
+      }
+    for (size_t i = 0; i < rows; ++i)
+      for (size_t j = 0; j < rows; ++j) {
+        double sum = 0.0;
+        for (size_t c = 0; c < m; ++c) sum += jf[i * m + c] * jac[j * m + c];
+        a[i * rows + j] = sum + (i == j ? 1e-12 : 0.0);
+      }
+    // X = A^-1 JF by Gaussian elimination with partial pivoting.
+    std::vector<double> x = jf;
+    for (size_t col = 0; col < rows; ++col) {
+      size_t pivot = col;
+      for (size_t i = col + 1; i < rows; ++i)
+        if (std::abs(a[i * rows + col]) > std::abs(a[pivot * rows + col])) pivot = i;
+      if (pivot != col) {
+        for (size_t c = 0; c < rows; ++c) std::swap(a[col * rows + c], a[pivot * rows + c]);
+        for (size_t c = 0; c < m; ++c) std::swap(x[col * m + c], x[pivot * m + c]);
+      }
+      const double d = a[col * rows + col];
+      if (std::abs(d) < 1e-300) continue;
+      for (size_t i = 0; i < rows; ++i) {
+        if (i == col) continue;
+        const double f = a[i * rows + col] / d;
+        if (f == 0.0) continue;
+        for (size_t c = 0; c < rows; ++c) a[i * rows + c] -= f * a[col * rows + c];
+        for (size_t c = 0; c < m; ++c) x[i * m + c] -= f * x[col * m + c];
+      }
+    }
+    for (size_t i = 0; i < rows; ++i) {
+      const double d = a[i * rows + i];
+      for (size_t c = 0; c < m; ++c) x[i * m + c] = std::abs(d) < 1e-300 ? 0.0 : x[i * m + c] / d;
+    }
+    // F -= JF^T X (F symmetric, so F J^T = JF^T).
+    for (size_t i = 0; i < m; ++i)
+      for (size_t k = 0; k < rows; ++k) {
+        const double v = jf[k * m + i];
+        if (v == 0.0) continue;
+        for (size_t c = 0; c < m; ++c) full[i * m + c] -= v * x[k * m + c];
+      }
+  }
+  std::vector<double> inverse(static_cast<size_t>(dofs * dofs), 0.0);
+  for (size_t i = 0; i < static_cast<size_t>(dofs); ++i)
+    for (size_t j = 0; j < static_cast<size_t>(dofs); ++j)
+      inverse[i * static_cast<size_t>(dofs) + j] = full[(6 + i) * m + 6 + j];
+  return inverse;
+}
+
+double World::maxJointSpeed() const {
+  std::vector<double> v(static_cast<size_t>(impl_->dofs));
+  jointVelocities(v);
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+glm::dvec3 World::linearMomentum() const {
+  const Impl& w = *impl_;
+  const btMultiBody& mb = *w.body;
+  const int links = mb.getNumLinks();
+  btAlignedObjectArray<btVector3> omega, vel;
+  omega.resize(links + 1);
+  vel.resize(links + 1);
+  mb.compTreeLinkVelocities(&omega[0], &vel[0]);
+  glm::dvec3 p = toGlm(mb.getBaseVel()) * double(mb.getBaseMass());
+  for (int i = 0; i < links; ++i) {
+    const btQuaternion r =
+        w.colliders[static_cast<size_t>(i + 1)]->getWorldTransform().getRotation();
+    p += toGlm(quatRotate(r, vel[i + 1])) * double(mb.getLinkMass(i));
+  }
+  return p;
+}
+
+glm::dvec3 World::centreOfMass() const {
+  glm::dvec3 c(0.0);
+  for (size_t li = 0; li < impl_->colliders.size(); ++li)
+    c += toGlm(impl_->colliders[li]->getWorldTransform().getOrigin()) *
+         impl_->plan.links[li].mass_kg;
+  return c / impl_->plan.total_mass_kg;
+}
+
+double World::totalMass() const {
+  return impl_->plan.total_mass_kg;
+}
+const std::vector<std::uint8_t>& World::linkContacts() const {
+  return impl_->contacts;
+}
+const std::vector<double>& World::linkNormalForces() const {
+  return impl_->normal_forces;
+}
+glm::dvec3 World::lastContactImpulse() const {
+  return impl_->contact_impulse;
+}
+const ExternalLoads& World::externalLoads() const {
+  return impl_->loads;
+}
+
+bool World::finite() const {
+  const Impl& w = *impl_;
+  for (const auto& c : w.colliders) {
+    const btTransform& t = c->getWorldTransform();
+    if (!std::isfinite(t.getOrigin().x()) || !std::isfinite(t.getOrigin().y()) ||
+        !std::isfinite(t.getOrigin().z()) || !std::isfinite(t.getRotation().w()))
+      return false;
+  }
+  std::vector<double> v(static_cast<size_t>(w.dofs));
+  jointVelocities(v);
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+}  // namespace sinew::physics

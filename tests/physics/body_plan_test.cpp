@@ -1,0 +1,199 @@
+#include "sinew/physics/body_plan.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "physics_test_util.h"
+
+namespace sinew::physics {
+namespace {
+
+motion::Skeleton twoBoneSkeleton() {
+  motion::Skeleton s;
+  s.addJoint("Hips", motion::kNoParent, {0.0, 1.0, 0.0});
+  s.addJoint("Knee", 0, {0.0, -0.5, 0.0});
+  s.end_sites[1] = glm::dvec3(0.0, -0.4, 0.0);
+  return s;
+}
+
+TEST(BodyPlan, RefusesInvalidInputs) {
+  const motion::Skeleton good = twoBoneSkeleton();
+  ASSERT_TRUE(buildBodyPlan(good, nullptr).ok()) << buildBodyPlan(good, nullptr).message();
+
+  auto refused = [&](BodyPlanSettings settings, const std::string& field) {
+    Result<BodyPlan> plan = buildBodyPlan(good, nullptr, settings);
+    EXPECT_FALSE(plan.ok()) << field;
+    EXPECT_NE(plan.message().find(field), std::string::npos) << plan.message();
+  };
+  BodyPlanSettings s;
+  s.min_segment_length_m = -1.0;
+  refused(s, "min_segment_length_m");
+  s = {};
+  s.hinge_dominance = 1.5;
+  refused(s, "hinge_dominance");
+  s = {};
+  s.human_mass_kg = 0.0;
+  refused(s, "human_mass_kg");
+  s = {};
+  s.radius_thigh = 0.0;
+  refused(s, "radius_thigh");
+  s = {};
+  s.density_kg_m3 = std::nan("");
+  refused(s, "density_kg_m3");
+  s = {};
+  s.reference_size_m = 0.0;
+  refused(s, "reference_size_m");
+
+  EXPECT_FALSE(buildBodyPlan(motion::Skeleton{}, nullptr).ok());
+
+  motion::Skeleton two_roots = twoBoneSkeleton();
+  two_roots.addJoint("Other", motion::kNoParent, {1.0, 0.0, 0.0});
+  Result<BodyPlan> r = buildBodyPlan(two_roots, nullptr);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("Other"), std::string::npos) << r.message();
+
+  motion::Clip wrong = motion::restClip(good, 3, 1.0 / 30.0);
+  wrong.joint_count = 5;
+  r = buildBodyPlan(good, &wrong);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("observed motion"), std::string::npos) << r.message();
+
+  // A plan edited into an invalid state is refused by validate(), naming the link and field.
+  BodyPlan plan = buildBodyPlan(good, nullptr).value();
+  BodyPlan bad = plan;
+  bad.links[1].mass_kg = 0.0;
+  EXPECT_NE(bad.validate().message().find("mass_kg"), std::string::npos);
+  bad = plan;
+  bad.links[1].parent = 5;
+  EXPECT_NE(bad.validate().message().find("parent"), std::string::npos);
+  bad = plan;
+  bad.links[1].inertia.y = -1.0;
+  EXPECT_NE(bad.validate().message().find("inertia"), std::string::npos);
+  bad = plan;
+  bad.total_mass_kg += 1.0;
+  EXPECT_NE(bad.validate().message().find("total_mass_kg"), std::string::npos);
+  bad = plan;
+  bad.links[1].type = JointType::kHinge;
+  bad.links[1].hinge_lower = 1.0;
+  bad.links[1].hinge_upper = 0.0;
+  EXPECT_NE(bad.validate().message().find("hinge_lower"), std::string::npos);
+}
+
+void printPlan(const char* label, const BodyPlan& plan, int joints) {
+  int ball = 0, hinge = 0, fixed = 0;
+  for (const Link& l : plan.links) {
+    ball += l.type == JointType::kBall;
+    hinge += l.type == JointType::kHinge;
+    fixed += l.type == JointType::kFixed;
+  }
+  std::printf(
+      "%s: %d joints -> %zu links (%d ball, %d hinge, %d fixed), %d DOF, %.2f kg, size %.2f m%s\n",
+      label, joints, plan.links.size(), ball, hinge, fixed, plan.dofCount(), plan.total_mass_kg,
+      plan.size_m, plan.human ? ", human (de Leva)" : ", by volume");
+}
+
+TEST(BodyPlan, BipedFromAssetHasHumanMassesHingedKneesAndBoxFeet) {
+  const motion::MotionAsset asset =
+      test_util::loadAsset(sinew::test::sourceDir() / "assets" / "biped_walk.bvh");
+  ASSERT_FALSE(asset.clips.empty());
+  const motion::Skeleton& skeleton = asset.skeleton;
+  Result<BodyPlan> built = buildBodyPlan(skeleton, &asset.clips[0]);
+  ASSERT_TRUE(built.ok()) << built.message();
+  const BodyPlan& plan = built.value();
+  printPlan("biped_walk.bvh", plan, skeleton.jointCount());
+  for (const Link& l : plan.links) {
+    std::printf("  %-14s parent %2d %-6s mass %6.2f kg shape %d", l.name.c_str(), l.parent,
+                jointTypeName(l.type), l.mass_kg, static_cast<int>(l.shape.type));
+    if (l.type == JointType::kHinge)
+      std::printf(" axis (%.2f %.2f %.2f) [%.0f, %.0f] deg", l.hinge_axis.x, l.hinge_axis.y,
+                  l.hinge_axis.z, l.hinge_lower * 57.2958, l.hinge_upper * 57.2958);
+    std::printf("\n");
+  }
+  for (const std::string& note : plan.notes) std::printf("  note: %s\n", note.c_str());
+
+  EXPECT_TRUE(plan.human);
+  EXPECT_NEAR(plan.total_mass_kg, 70.0, 1e-9);
+  EXPECT_LT(static_cast<int>(plan.links.size()), skeleton.jointCount());
+  ASSERT_EQ(static_cast<int>(plan.link_of_joint.size()), skeleton.jointCount());
+  int feet = 0, knees = 0;
+  for (const Link& l : plan.links) {
+    if (l.foot) {
+      ++feet;
+      EXPECT_EQ(l.shape.type, ShapeType::kBox) << l.name;
+    }
+    if (l.segment == spectral::Segment::kShank) {
+      ++knees;
+      EXPECT_EQ(l.type, JointType::kHinge) << l.name;
+      EXPECT_LT(l.hinge_lower, l.hinge_upper);
+    }
+    EXPECT_GT(l.mass_kg, 0.0);
+  }
+  EXPECT_EQ(feet, 2);
+  EXPECT_EQ(knees, 2);
+  // Every joint maps to a link whose pivot joint is itself or one of its ancestors.
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    const int pivot =
+        plan.links[static_cast<size_t>(plan.link_of_joint[static_cast<size_t>(j)])].joint;
+    int a = j;
+    while (a != pivot && a != motion::kNoParent) a = skeleton.parents[static_cast<size_t>(a)];
+    EXPECT_TRUE(a == pivot || j < pivot) << skeleton.names[static_cast<size_t>(j)];
+  }
+}
+
+TEST(BodyPlan, LinkPoseReproducesTheClipsLinkRotations) {
+  const motion::MotionAsset asset =
+      test_util::loadAsset(sinew::test::sourceDir() / "assets" / "biped_walk.bvh");
+  ASSERT_FALSE(asset.clips.empty());
+  const motion::Skeleton& skeleton = asset.skeleton;
+  const motion::Clip& clip = asset.clips[0];
+  const BodyPlan plan = buildBodyPlan(skeleton, &clip).value();
+  // World rotation of every link frame from link coordinates equals the skeleton's, except for
+  // what a hinge drops (the off-axis part of knee motion, small for a clip that made it a hinge).
+  const int frame = clip.frame_count / 2;
+  const size_t n = static_cast<size_t>(skeleton.jointCount());
+  const LinkPose pose =
+      linkPoseFromSkeleton(plan, skeleton, std::span(clip.rotations.data() + frame * n, n),
+                           std::span(clip.translations.data() + frame * n, n));
+  std::vector<glm::dmat4> world(n);
+  motion::worldTransforms(skeleton, clip, frame, world);
+  std::vector<glm::dquat> link_world(plan.links.size());
+  double worst_ball = 0.0;
+  for (size_t li = 0; li < plan.links.size(); ++li) {
+    const Link& l = plan.links[li];
+    link_world[li] = li == 0 ? pose.base_rotation
+                             : link_world[static_cast<size_t>(l.parent)] *
+                                   linkRelativeRotation(l, pose.rotations[li], pose.angles[li]);
+    const glm::dquat expected = glm::quat_cast(glm::dmat3(world[static_cast<size_t>(l.joint)]));
+    const double err =
+        2.0 * std::acos(std::min(1.0, std::abs(glm::dot(glm::normalize(link_world[li]),
+                                                        glm::normalize(expected)))));
+    bool hinge_above = false;
+    for (int a = static_cast<int>(li); a > 0; a = plan.links[static_cast<size_t>(a)].parent)
+      hinge_above = hinge_above || plan.links[static_cast<size_t>(a)].type != JointType::kBall;
+    if (!hinge_above) worst_ball = std::max(worst_ball, err);
+    EXPECT_LT(err, 0.35) << l.name;
+  }
+  std::printf("link world rotations vs skeleton (ball-only chains): worst %.2e rad\n", worst_ball);
+  EXPECT_LT(worst_ball, 1e-9);
+}
+
+TEST(BodyPlan, CmuZeroLengthHipJointsMergeIntoThePelvis) {
+  SINEW_REQUIRE_SHARED_DATA();
+  const motion::MotionAsset asset =
+      test_util::loadAsset(sinew::test::sharedData() / "bvh" / "cmu_131_01.bvh");
+  ASSERT_FALSE(asset.clips.empty());
+  const BodyPlan plan = buildBodyPlan(asset.skeleton, &asset.clips[0]).value();
+  printPlan("cmu_131_01.bvh", plan, asset.skeleton.jointCount());
+  for (const char* name : {"LHipJoint", "RHipJoint"}) {
+    const int j = asset.skeleton.findJoint(name);
+    if (j < 0) continue;
+    EXPECT_EQ(plan.link_of_joint[static_cast<size_t>(j)], 0) << name;
+  }
+  for (const Link& l : plan.links) EXPECT_EQ(l.name.find("Finger"), std::string::npos) << l.name;
+}
+
+}  // namespace
+}  // namespace sinew::physics

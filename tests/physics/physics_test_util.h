@@ -1,0 +1,92 @@
+// Helpers shared by the physics tests: load a rig, build its plan, hold its first pose under PD.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "sinew/motion/asset.h"
+#include "sinew/physics/body_plan.h"
+#include "sinew/physics/controller.h"
+#include "sinew/physics/world.h"
+#include "support/test_support.h"
+
+namespace sinew::physics::test_util {
+
+inline motion::MotionAsset loadAsset(const std::filesystem::path& path) {
+  Result<motion::MotionAsset> asset = motion::importMotion(path);
+  EXPECT_TRUE(asset.ok()) << path << ": " << asset.message();
+  if (!asset.ok()) return {};
+  return std::move(asset).value();
+}
+
+// First-frame pose of a clip in link coordinates.
+inline LinkPose firstPose(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                          const motion::Clip& clip) {
+  const size_t n = static_cast<size_t>(skeleton.jointCount());
+  return linkPoseFromSkeleton(plan, skeleton, std::span(clip.rotations.data(), n),
+                              std::span(clip.translations.data(), n));
+}
+
+struct HoldResult {
+  double start_height = 0.0;     // base height after placement, m
+  double min_height = 0.0;       // lowest base height over the run, m
+  double max_joint_error = 0.0;  // largest joint angle error over the last half of the run, rad
+  double max_joint_speed = 0.0;  // rad/s
+  bool finite = true;
+  double fall_time = -1.0;  // when the base first dropped below 70% of its start, s; -1 never
+  ExternalLoads loads;
+  std::vector<glm::dmat4> final_transforms;  // (links)
+};
+
+// Holds `target` under PD for `seconds` from the same pose.
+inline HoldResult holdPose(const BodyPlan& plan, const LinkPose& target, double seconds,
+                           const WorldSettings& world_settings = {},
+                           const ControllerSettings& controller_settings = {}) {
+  HoldResult out;
+  Result<std::unique_ptr<World>> created = World::create(plan, target, world_settings);
+  EXPECT_TRUE(created.ok()) << created.message();
+  if (!created.ok()) return out;
+  World& world = *created.value();
+  Result<PdController> controller = PdController::create(world, controller_settings);
+  EXPECT_TRUE(controller.ok()) << controller.message();
+  if (!controller.ok()) return out;
+  const size_t dofs = static_cast<size_t>(world.dofCount());
+  std::vector<double> torques(dofs, 0.0);
+  out.start_height = world.jointPositions().base_position.y;
+  out.min_height = out.start_height;
+  const long long steps = std::llround(seconds * world_settings.step_hz);
+  for (long long s = 0; s < steps; ++s) {
+    controller.value().computeTorques(world, target, torques);
+    world.step(torques);
+    if (!world.finite()) {
+      out.finite = false;
+      break;
+    }
+    const LinkPose now = world.jointPositions();
+    out.min_height = std::min(out.min_height, now.base_position.y);
+    if (out.fall_time < 0.0 && now.base_position.y < 0.7 * out.start_height)
+      out.fall_time = world.time();
+    out.max_joint_speed = std::max(out.max_joint_speed, world.maxJointSpeed());
+    if (s >= steps / 2) {
+      for (size_t li = 1; li < plan.links.size(); ++li) {
+        double e = 0.0;
+        if (plan.links[li].type == JointType::kBall)
+          e = glm::length(rotationVectorOf(glm::inverse(now.rotations[li]) * target.rotations[li]));
+        else if (plan.links[li].type == JointType::kHinge)
+          e = std::abs(now.angles[li] - target.angles[li]);
+        out.max_joint_error = std::max(out.max_joint_error, e);
+      }
+    }
+  }
+  out.loads = world.externalLoads();
+  out.final_transforms.resize(plan.links.size());
+  world.linkTransforms(out.final_transforms);
+  return out;
+}
+
+}  // namespace sinew::physics::test_util
