@@ -8,28 +8,15 @@
 #include "sinew/motion/asset.h"
 #include "sinew/spectral/secondary.h"
 #include "sinew/spectral/target_io.h"
+#include "spectral/spectral_test_util.h"
 #include "support/test_support.h"
 
 namespace sinew::spectral {
 namespace {
 
-struct Analysed {
-  motion::MotionAsset asset;
-  TargetMotion target;
-};
-
-Analysed analyseFile(const std::filesystem::path& path) {
-  Analysed out{motion::importMotion(path).value(), {}};
-  AnalysisSettings settings;
-  settings.harmonics = 10;
-  out.target = targetFromSpectrum(analyze(out.asset.skeleton, out.asset.clips[0], settings).value(),
-                                  {}, path.stem().string());
-  return out;
-}
-
-std::filesystem::path bandai(const std::string& what) {
-  return test::sharedData() / "bvh" / ("bandai_dataset-1_" + what + "_001.bvh");
-}
+using test_util::Analysed;
+using test_util::analyseFile;
+using test_util::bandai;
 
 TEST(BlendTest, RefusesBadWeightsAndSkeletons) {
   const Analysed walk = analyseFile(test::sourceDir() / "assets" / "biped_walk.bvh");

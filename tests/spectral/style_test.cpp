@@ -7,33 +7,15 @@
 
 #include "sinew/motion/asset.h"
 #include "sinew/spectral/bands.h"
+#include "spectral/spectral_test_util.h"
 #include "support/test_support.h"
 
 namespace sinew::spectral {
 namespace {
 
-struct Analysed {
-  motion::MotionAsset asset;
-  TargetMotion target;
-};
-
-// Every harmonic up to 10 kept, so styles see the whole spectrum.
-Analysed analyseFile(const std::filesystem::path& path) {
-  Analysed out;
-  Result<motion::MotionAsset> asset = motion::importMotion(path);
-  EXPECT_TRUE(asset.ok()) << asset.message();
-  out.asset = std::move(asset).value();
-  AnalysisSettings settings;
-  settings.harmonics = 10;
-  Result<MotionSpectrum> spectrum = analyze(out.asset.skeleton, out.asset.clips[0], settings);
-  EXPECT_TRUE(spectrum.ok()) << spectrum.message();
-  out.target = targetFromSpectrum(spectrum.value(), {}, path.stem().string());
-  return out;
-}
-
-std::filesystem::path bandai(const std::string& what) {
-  return test::sharedData() / "bvh" / ("bandai_dataset-1_" + what + "_001.bvh");
-}
+using test_util::Analysed;
+using test_util::analyseFile;
+using test_util::bandai;
 
 TEST(TargetMotionTest, RefusesInvalidTargets) {
   const Analysed walk = analyseFile(test::sourceDir() / "assets" / "biped_walk.bvh");
