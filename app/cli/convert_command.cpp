@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "sinew/motion/bvh.h"
 
 namespace sinew::app {
 namespace {
@@ -25,10 +26,7 @@ int runConvert(const ConvertArgs& args) {
 
   motion::ExportOptions export_options;
   if (!args.out_units.empty() || !args.out_up.empty()) {
-    motion::SourceFrame frame = asset.value().skeleton.source;
-    if (!asset.value().skeleton.channelCount()) {
-      frame = {motion::LengthUnit::kCentimetres, motion::UpAxis::kY};
-    }
+    motion::SourceFrame frame = motion::defaultBvhFrame(asset.value().skeleton);
     if (!args.out_units.empty()) frame.unit = *motion::unitFromName(args.out_units);
     if (!args.out_up.empty()) frame.up = *motion::upAxisFromName(args.out_up);
     export_options.bvh_frame = frame;

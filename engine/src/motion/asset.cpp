@@ -58,11 +58,7 @@ Status exportMotion(const std::filesystem::path& path, const MotionAsset& asset,
   const Clip resampled = options.fps ? resampleClip(clip, 1.0 / *options.fps) : clip;
   const std::string ext = lowerExtension(path);
   if (ext == ".bvh") {
-    SourceFrame frame = asset.skeleton.source;
-    if (!asset.skeleton.channels.empty() && asset.skeleton.channelCount() == 0) {
-      frame = SourceFrame{LengthUnit::kCentimetres, UpAxis::kY};  // not from BVH: the usual BVH
-    }
-    if (options.bvh_frame) frame = *options.bvh_frame;
+    const SourceFrame frame = options.bvh_frame ? *options.bvh_frame : defaultBvhFrame(asset.skeleton);
     return writeFileAtomically(path, writeBvh(asset.skeleton, resampled, frame));
   }
   if (ext == ".glb" || ext == ".gltf") return saveGltf(path, asset, resampled);

@@ -432,8 +432,7 @@ class BvhParser {
     for (int j = 0; j < joints; ++j) {
       if (skeleton_.parents[j] != kNoParent) ++children[skeleton_.parents[j]];
     }
-    int pelvis = 0;
-    while (pelvis + 1 < joints && children[pelvis] == 1) ++pelvis;
+    const int pelvis = pelvisJoint(skeleton_);
     std::vector<bool> in_subtree(joints, false);
     std::vector<glm::dvec3> points;
     std::vector<bool> is_leaf;

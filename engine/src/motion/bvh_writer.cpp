@@ -62,6 +62,11 @@ std::vector<double> inheritedScale(const Skeleton& skeleton, const Clip& clip, i
 
 }  // namespace
 
+SourceFrame defaultBvhFrame(const Skeleton& skeleton) {
+  return skeleton.channelCount() > 0 ? skeleton.source
+                                     : SourceFrame{LengthUnit::kCentimetres, UpAxis::kY};
+}
+
 std::string writeBvh(const Skeleton& skeleton, const Clip& clip, const SourceFrame& frame) {
   const std::vector<ChannelLayout> layouts = layoutsFor(skeleton, clip);
   const std::vector<double> rest_scale = inheritedScale(skeleton, clip, 0);

@@ -107,6 +107,17 @@ Status Skeleton::validate() const {
   return {};
 }
 
+int pelvisJoint(const Skeleton& skeleton) {
+  std::vector<int> children(skeleton.jointCount(), 0);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (skeleton.parents[j] != kNoParent) ++children[skeleton.parents[j]];
+  }
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (children[j] >= 2) return j;
+  }
+  return 0;
+}
+
 std::vector<glm::dmat4> restWorldTransforms(const Skeleton& skeleton) {
   std::vector<glm::dmat4> world(skeleton.jointCount());
   for (int j = 0; j < skeleton.jointCount(); ++j) {

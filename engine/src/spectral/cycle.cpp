@@ -52,20 +52,8 @@ double sampleAt(const std::vector<double>& values, double frame) {
   return values[a] * (1.0 - u) + values[a + 1] * u;
 }
 
-double similarity(const Selection& selection, int frames, double lag) {
-  if (selection.variance <= 0.0 || lag >= frames - 1) return 0.0;
-  const int count = static_cast<int>(std::floor(frames - 1 - lag)) + 1;
-  double squared = 0.0;
-  for (const std::vector<double>* values : selection.values) {
-    for (int f = 0; f < count; ++f) {
-      const double d = sampleAt(*values, f + lag) - (*values)[f];
-      squared += d * d;
-    }
-  }
-  return 1.0 - squared / count / (2.0 * selection.variance);
-}
-
-// similarity() at every integer lag 0 .. frames - 1 at once. The squared differences expand to
+// Similarity of the pose with itself `lag` frames later, 1 - (mean squared change) / (2 x
+// variance), at every integer lag 0 .. frames - 1 at once. The squared differences expand to
 // two sums of squares (prefix sums) minus twice the autocorrelation, and the autocorrelations of
 // all channels add up to one inverse FFT of their summed power spectra: O(channels x N log N)
 // instead of O(channels x N x lags).
@@ -112,10 +100,6 @@ double refinePeak(double before, double at, double after) {
 }
 
 }  // namespace
-
-double poseSimilarity(const MotionSignals& signals, double lag_frames) {
-  return similarity(selectChannels(signals), signals.frame_count, lag_frames);
-}
 
 StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings) {
   StrideEstimate estimate;

@@ -105,16 +105,6 @@ std::vector<int> childCounts(const motion::Skeleton& skeleton) {
   return counts;
 }
 
-// The pelvis: the first joint that branches (joints above it, such as a root at the origin,
-// are not part of the body).
-int pelvisJoint(const motion::Skeleton& skeleton) {
-  const std::vector<int> counts = childCounts(skeleton);
-  for (int j = 0; j < skeleton.jointCount(); ++j) {
-    if (counts[j] >= 2) return j;
-  }
-  return 0;
-}
-
 int lowestCommonAncestor(const motion::Skeleton& skeleton, int a, int b) {
   for (int j = a; j != motion::kNoParent; j = skeleton.parents[j]) {
     if (inSubtree(skeleton, j, b)) return j;
@@ -201,7 +191,7 @@ std::vector<int> groundedFeet(const motion::Skeleton& skeleton, const Poses& fir
                               const std::vector<int>& named) {
   const int joints = skeleton.jointCount();
   const std::vector<int> counts = childCounts(skeleton);
-  const int pelvis = pelvisJoint(skeleton);
+  const int pelvis = motion::pelvisJoint(skeleton);
   if (counts[pelvis] < 2) return {};  // a single chain has no legs
   double low = 1e300;
   double high = -1e300;
@@ -251,7 +241,7 @@ std::vector<int> groundedFeet(const motion::Skeleton& skeleton, const Poses& fir
 
 // The horizontal travel of the pelvis over the clip, or +Z when it stays in place.
 glm::dvec3 clipForward(const motion::Skeleton& skeleton, const motion::Clip& clip) {
-  const int pelvis = pelvisJoint(skeleton);
+  const int pelvis = motion::pelvisJoint(skeleton);
   const glm::dvec3 travel =
       horizontal(motion::worldPositions(skeleton, clip, clip.frame_count - 1)[pelvis] -
                  motion::worldPositions(skeleton, clip, 0)[pelvis]);
@@ -316,7 +306,7 @@ Result<std::vector<Foot>> findFeet(const motion::Skeleton& skeleton, const motio
 
   // Sides from the names of the foot and the joints above it, else from where it stands.
   const glm::dvec3 left = leftOf(clipForward(skeleton, clip));
-  const glm::dvec3 pelvis = first.joint[pelvisJoint(skeleton)];
+  const glm::dvec3 pelvis = first.joint[motion::pelvisJoint(skeleton)];
   for (Foot& foot : feet) {
     foot.points = footPoints(skeleton, foot.joint);
     for (int j = foot.joint; j != motion::kNoParent && foot.side == Side::kUnknown;
@@ -396,7 +386,7 @@ Status IndirectSettings::validate() const {
 MassDistribution massDistribution(const motion::Skeleton& skeleton, const std::vector<Foot>& feet,
                                   const SegmentMassTable& table) {
   const int joints = skeleton.jointCount();
-  const int pelvis = pelvisJoint(skeleton);
+  const int pelvis = motion::pelvisJoint(skeleton);
   std::vector<Segment> segment(joints, Segment::kNone);
   std::vector<int> group(joints, -1);  // joints sharing one segment's mass
   std::vector<bool> massless(joints, false);

@@ -201,12 +201,7 @@ Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMot
   // The pelvis (the first joint that branches) and the joints above it carry the global heading,
   // which says where the actor walked, not how: they are left out.
   const std::vector<JointGroup> groups = jointGroups(skeleton);
-  std::vector<int> children(joints, 0);
-  for (int j = 0; j < joints; ++j) {
-    if (skeleton.parents[j] != motion::kNoParent) ++children[skeleton.parents[j]];
-  }
-  int pelvis = 0;
-  while (pelvis + 1 < joints && children[pelvis] == 1) ++pelvis;
+  const int pelvis = motion::pelvisJoint(skeleton);
   std::vector<bool> above_pelvis(joints, false);
   for (int j = pelvis; j != motion::kNoParent; j = skeleton.parents[j]) above_pelvis[j] = true;
   std::vector<glm::dquat> mean_posture(joints);

@@ -17,6 +17,11 @@ namespace sinew::motion {
 Result<MotionAsset> readBvh(std::string_view text, std::string_view source_name,
                             const ImportOptions& options = {});
 
+// The units and axes a BVH export of this skeleton uses unless told otherwise: the source file's
+// for a rig that came from BVH (so a round trip writes the numbers it read), else centimetres,
+// Y-up, what most BVH tools expect.
+SourceFrame defaultBvhFrame(const Skeleton& skeleton);
+
 // BVH text for `clip` on `skeleton`, in `frame` units and axes. Joints keep their channel layout;
 // joints without one get 3 rotation channels ZXY, plus 3 position channels for roots and for
 // joints whose translation moves. Numbers are written in their shortest exact form.

@@ -66,6 +66,11 @@ struct Skeleton {
   Status validate() const;
 };
 
+// The pelvis: the first joint with two or more children, or 0 when nothing branches. Joints
+// above it (a root at the world origin, Bandai's joint_Root) carry no body and are left out of
+// anything that measures the body: its size, its attitude, its centre of mass.
+int pelvisJoint(const Skeleton& skeleton);
+
 // Rest pose world transforms (joints), metres.
 std::vector<glm::dmat4> restWorldTransforms(const Skeleton& skeleton);
 

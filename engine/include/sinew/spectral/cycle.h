@@ -28,9 +28,6 @@ struct StrideEstimate {
 // itself shifted by that lag, refined between frames by a parabola.
 StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings = {});
 
-// Similarity of the pose with itself `lag_frames` later (fractional lags interpolate), 0..1.
-double poseSimilarity(const MotionSignals& signals, double lag_frames);
-
 struct AnalysisWindow {
   double start_s = 0.0;   // window start, seconds from the clip's first frame
   int strides = 1;        // whole strides in the window
