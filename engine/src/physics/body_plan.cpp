@@ -66,6 +66,25 @@ glm::dquat rotationFromY(const glm::dvec3& d) {
   return glm::angleAxis(std::atan2(s, c), axis / s);
 }
 
+// The rig's rest pose stood upright: the rest world transforms turned so that the mean direction
+// from the feet to the pelvis points up (+Y). Rest poses are the natural standing posture (legs
+// straight, feet flat) but some are stored lying down (iClone's is Z-up under a Y-up motion).
+// `upright` receives the turn.
+std::vector<glm::dmat4> uprightRest(const motion::Skeleton& skeleton, std::span<const int> feet,
+                                    glm::dquat& upright) {
+  std::vector<glm::dmat4> rest = motion::restWorldTransforms(skeleton);
+  upright = kIdentity;
+  if (feet.empty()) return rest;
+  const glm::dvec3 pelvis(rest[static_cast<size_t>(motion::pelvisJoint(skeleton))][3]);
+  glm::dvec3 up(0.0);
+  for (int f : feet) up += pelvis - glm::dvec3(rest[static_cast<size_t>(f)][3]);
+  if (glm::length(up) < 1e-9) return rest;
+  upright = glm::inverse(rotationFromY(glm::normalize(up)));
+  const glm::dmat4 turn = glm::mat4_cast(upright);
+  for (glm::dmat4& m : rest) m = turn * m;
+  return rest;
+}
+
 // Principal eigenvector (by power iteration, deterministic) and its share of the trace.
 void principalAxis(const glm::dmat3& m, glm::dvec3& axis, double& share) {
   const double trace = m[0][0] + m[1][1] + m[2][2];
@@ -502,6 +521,11 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
   }
 
   // Shapes from the points each link holds, in its own frame at the first pose.
+  std::vector<int> foot_joints;
+  for (const Link& link : plan.links)
+    if (link.foot) foot_joints.push_back(link.joint);
+  glm::dquat upright;
+  const std::vector<glm::dmat4> rest_up = uprightRest(skeleton, foot_joints, upright);
   for (int li = 0; li < link_count; ++li) {
     Link& link = plan.links[li];
     const glm::dmat4 to_link = glm::inverse(world[link.joint]);
@@ -519,10 +543,23 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     Shape shape;
     shape.radius = radius;
     if (link.foot) {
-      const glm::dvec3 ankle(world[link.joint][3]);
+      // The sole is level when the foot stands at rest: a box measured in the upright rest pose
+      // (both feet alike, whatever the clip's first frame does with them), then carried into the
+      // first pose's link frame.
+      std::vector<glm::dvec3> sole_points;
+      for (int j = link.joint; j < n; ++j) {
+        const int owner = plan.link_of_joint[j];
+        const bool own = owner == li && j != link.joint;
+        const bool child_pivot =
+            owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
+        if (own || child_pivot) sole_points.emplace_back(rest_up[j][3]);
+        if (owner == li && skeleton.end_sites[j])
+          sole_points.push_back(transformPoint(rest_up[j], *skeleton.end_sites[j]));
+      }
+      const glm::dvec3 ankle(rest_up[link.joint][3]);
       glm::dvec3 forward(0.0);
       double far = 0.0, bottom = ankle.y;
-      for (const glm::dvec3& p : points_world) {
+      for (const glm::dvec3& p : sole_points) {
         glm::dvec3 d = p - ankle;
         d.y = 0.0;
         if (glm::length(d) > far) far = glm::length(d), forward = d;
@@ -543,9 +580,9 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
       shape.type = ShapeType::kBox;
       shape.half_extents = glm::dvec3(radius, 0.5 * (top - bottom), 0.5 * (far + heel));
       const glm::dquat world_rotation = glm::quat_cast(glm::dmat3(side, kUp, forward));
-      shape.center = transformPoint(to_link, center_world);
-      shape.rotation = glm::normalize(glm::inverse(glm::quat_cast(glm::dmat3(world[link.joint]))) *
-                                      world_rotation);
+      shape.center = transformPoint(glm::inverse(rest_up[link.joint]), center_world);
+      shape.rotation = glm::normalize(
+          glm::inverse(glm::quat_cast(glm::dmat3(rest_up[link.joint]))) * world_rotation);
     } else if (points_world.empty()) {
       shape.type = ShapeType::kSphere;
     } else if (points_world.size() >= 2 && (link.segment == spectral::Segment::kTrunk || li == 0)) {
@@ -660,6 +697,22 @@ LinkPose linkPoseFromSkeleton(const BodyPlan& plan,
     else
       pose.angles[li] = hingeAngle(q, link.hinge_axis);
   }
+  return pose;
+}
+
+}  // namespace sinew::physics
+
+namespace sinew::physics {
+
+LinkPose standingPose(const BodyPlan& plan, const motion::Skeleton& skeleton) {
+  std::vector<int> feet;
+  for (const Link& link : plan.links)
+    if (link.foot) feet.push_back(link.joint);
+  glm::dquat upright;
+  uprightRest(skeleton, feet, upright);
+  LinkPose pose = linkPoseFromSkeleton(plan, skeleton, skeleton.rest_rotations, skeleton.offsets);
+  pose.base_position = upright * pose.base_position;
+  pose.base_rotation = glm::normalize(upright * pose.base_rotation);
   return pose;
 }
 

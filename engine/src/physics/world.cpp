@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <random>
 #include <string>
 
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
@@ -12,11 +14,14 @@
 #include <BulletCollision/CollisionShapes/btCapsuleShape.h>
 #include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodySphericalJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
 namespace sinew::physics {
@@ -59,7 +64,51 @@ double lowestPoint(const Shape& shape, const glm::dmat4& link_to_world) {
   return c.y;
 }
 
+double radians(double deg) { return deg * std::numbers::pi / 180.0; }
+
+// Rough terrain: one height per grid node, uniform in [0, amplitude] from the seed (the top 53
+// bits of the engine's output: the same on every platform).
+constexpr double kRoughExtentM = 40.0;
+
+std::vector<double> roughHeights(const TerrainSettings& t, int& nodes) {
+  nodes = static_cast<int>(std::ceil(kRoughExtentM / t.cell_m)) + 1;
+  std::mt19937_64 engine(t.seed);
+  std::vector<double> heights(static_cast<size_t>(nodes) * static_cast<size_t>(nodes));
+  for (double& h : heights) h = t.amplitude_m * static_cast<double>(engine() >> 11) * 0x1.0p-53;
+  return heights;
+}
+
 }  // namespace
+
+const char* terrainKindName(TerrainSettings::Kind kind) {
+  switch (kind) {
+    case TerrainSettings::Kind::kFlat:
+      return "flat";
+    case TerrainSettings::Kind::kSlope:
+      return "slope";
+    case TerrainSettings::Kind::kSteps:
+      return "steps";
+    case TerrainSettings::Kind::kRough:
+      return "rough";
+  }
+  return "flat";
+}
+
+Status TerrainSettings::validate() const {
+  if (!(std::isfinite(slope_deg) && std::abs(slope_deg) < 45.0))
+    return Status::error("terrain.slope_deg must be in (-45, 45)");
+  if (!(std::isfinite(step_height_m) && step_height_m > 0.0 && step_height_m <= 1.0))
+    return Status::error("terrain.step_height_m must be in (0, 1]");
+  if (!(std::isfinite(step_depth_m) && step_depth_m >= 0.1))
+    return Status::error("terrain.step_depth_m must be >= 0.1");
+  if (step_count < 1 || step_count > 1000) return Status::error("terrain.step_count must be in 1..1000");
+  if (!std::isfinite(step_start_m)) return Status::error("terrain.step_start_m must be finite");
+  if (!(std::isfinite(amplitude_m) && amplitude_m > 0.0 && amplitude_m <= 1.0))
+    return Status::error("terrain.amplitude_m must be in (0, 1]");
+  if (!(std::isfinite(cell_m) && cell_m >= 0.02 && cell_m <= 2.0))
+    return Status::error("terrain.cell_m must be in [0.02, 2]");
+  return Status();
+}
 
 Status WorldSettings::validate() const {
   if (!(std::isfinite(step_hz) && step_hz >= 30.0 && step_hz <= 10000.0))
@@ -69,6 +118,7 @@ Status WorldSettings::validate() const {
   if (!(std::isfinite(ground_friction) && ground_friction >= 0.0))
     return Status::error("ground_friction must be >= 0");
   if (!std::isfinite(ground_height_m)) return Status::error("ground_height_m must be finite");
+  if (Status t = terrain.validate(); !t.ok()) return t;
   if (solver_iterations < 1 || solver_iterations > 1000)
     return Status::error("solver_iterations must be in 1..1000");
   if (!(std::isfinite(ground_clearance_m) && ground_clearance_m >= 0.0))
@@ -91,14 +141,20 @@ struct World::Impl {
   std::unique_ptr<btDbvtBroadphase> broadphase;
   std::unique_ptr<btMultiBodyConstraintSolver> solver;
   std::unique_ptr<btMultiBodyDynamicsWorld> world;
-  std::unique_ptr<btStaticPlaneShape> ground_shape;
-  std::unique_ptr<btCollisionObject> ground;
+  std::vector<std::unique_ptr<btCollisionShape>> ground_shapes;
+  std::vector<std::unique_ptr<btCollisionObject>> grounds;  // plane first, then steps
+  std::vector<double> heights;                              // rough terrain grid (x fastest)
+  int height_nodes = 0;
   std::vector<std::unique_ptr<btCollisionShape>> child_shapes;
   std::vector<std::unique_ptr<btCompoundShape>> shapes;
   std::unique_ptr<btMultiBody> body;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // (links), base first
   std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> servos;  // (links), null: no servo
+  double servo_rate = 0.0;
 
+  std::vector<std::pair<int, glm::dvec3>> pending_pushes;  // (link, impulse N s) for the next step
+  glm::dvec3 pushed_impulse{0.0};                         // every push so far, N s
   std::vector<std::uint8_t> contacts;
   std::vector<double> normal_forces;
   glm::dvec3 contact_impulse{0.0};
@@ -107,9 +163,100 @@ struct World::Impl {
   ~Impl() {
     if (!world) return;
     for (auto& limit : limits) world->removeMultiBodyConstraint(limit.get());
+    for (auto& servo : servos)
+      if (servo) world->removeMultiBodyConstraint(servo.get());
     if (body) world->removeMultiBody(body.get());
     for (auto& collider : colliders) world->removeCollisionObject(collider.get());
-    if (ground) world->removeCollisionObject(ground.get());
+    for (auto& ground : grounds) world->removeCollisionObject(ground.get());
+  }
+
+  void addGround(std::unique_ptr<btCollisionShape> shape, const btTransform& transform) {
+    auto object = std::make_unique<btCollisionObject>();
+    object->setCollisionShape(shape.get());
+    object->setWorldTransform(transform);
+    object->setFriction(settings.ground_friction);
+    object->setRestitution(0.0);
+    world->addCollisionObject(object.get(), kGroundGroup, kCharacterGroup);
+    ground_shapes.push_back(std::move(shape));
+    grounds.push_back(std::move(object));
+  }
+
+  void buildGround() {
+    const TerrainSettings& t = settings.terrain;
+    const double h0 = settings.ground_height_m;
+    btTransform identity;
+    identity.setIdentity();
+    switch (t.kind) {
+      case TerrainSettings::Kind::kFlat:
+        addGround(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), h0), identity);
+        break;
+      case TerrainSettings::Kind::kSlope: {
+        const double a = radians(t.slope_deg);
+        // Normal tilted back: height rises by tan(a) per metre of +Z.
+        addGround(std::make_unique<btStaticPlaneShape>(btVector3(0, std::cos(a), -std::sin(a)),
+                                                       h0 * std::cos(a)),
+                  identity);
+        break;
+      }
+      case TerrainSettings::Kind::kSteps: {
+        addGround(std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), h0), identity);
+        for (int k = 0; k < t.step_count; ++k) {
+          // Step k: a block from the ground to its top, from its riser to the far end (each block
+          // runs under the ones above it, so no gaps open between them).
+          const double top = h0 + (k + 1) * t.step_height_m;
+          const double z0 = t.step_start_m + k * t.step_depth_m;
+          const double z1 = t.step_start_m + t.step_count * t.step_depth_m + 5.0;
+          const double half_y = 0.5 * (top - h0 + 1.0);
+          btTransform at;
+          at.setIdentity();
+          at.setOrigin(btVector3(0.0, top - half_y, 0.5 * (z0 + z1)));
+          addGround(std::make_unique<btBoxShape>(btVector3(50.0, half_y, 0.5 * (z1 - z0))), at);
+        }
+        break;
+      }
+      case TerrainSettings::Kind::kRough: {
+        heights = roughHeights(t, height_nodes);
+        // The heightfield's local origin is the middle of its height range: shift it up.
+        auto shape = std::make_unique<btHeightfieldTerrainShape>(
+            height_nodes, height_nodes, heights.data(), 0.0, t.amplitude_m, 1, false);
+        shape->setLocalScaling(btVector3(t.cell_m, 1.0, t.cell_m));
+        btTransform at;
+        at.setIdentity();
+        at.setOrigin(btVector3(0.0, h0 + 0.5 * t.amplitude_m, 0.0));
+        addGround(std::move(shape), at);
+        break;
+      }
+    }
+  }
+
+  double groundHeight(double x, double z) const {
+    const TerrainSettings& t = settings.terrain;
+    const double h0 = settings.ground_height_m;
+    switch (t.kind) {
+      case TerrainSettings::Kind::kFlat:
+        return h0;
+      case TerrainSettings::Kind::kSlope:
+        return h0 + z * std::tan(radians(t.slope_deg));
+      case TerrainSettings::Kind::kSteps: {
+        const double k = std::floor((z - t.step_start_m) / t.step_depth_m) + 1.0;
+        return h0 + std::clamp(k, 0.0, static_cast<double>(t.step_count)) * t.step_height_m;
+      }
+      case TerrainSettings::Kind::kRough: {
+        // Bilinear over the grid, centred on the origin, as Bullet triangulates it (close enough
+        // for placing the character: its lowest point clears the highest of the four nodes).
+        const double half = 0.5 * (height_nodes - 1) * t.cell_m;
+        const double gx = std::clamp((x + half) / t.cell_m, 0.0, height_nodes - 1.0);
+        const double gz = std::clamp((z + half) / t.cell_m, 0.0, height_nodes - 1.0);
+        const int ix = std::min(static_cast<int>(gx), height_nodes - 2);
+        const int iz = std::min(static_cast<int>(gz), height_nodes - 2);
+        double top = 0.0;
+        for (int dz = 0; dz < 2; ++dz)
+          for (int dx = 0; dx < 2; ++dx)
+            top = std::max(top, heights[static_cast<size_t>((iz + dz) * height_nodes + ix + dx)]);
+        return h0 + top;
+      }
+    }
+    return h0;
   }
 
   // Link index in Bullet (-1 base) for plan link li.
@@ -210,13 +357,7 @@ Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPos
   w.world->setGravity(btVector3(0.0, -settings.gravity_m_s2, 0.0));
   w.world->getSolverInfo().m_numIterations = settings.solver_iterations;
 
-  w.ground_shape =
-      std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), settings.ground_height_m);
-  w.ground = std::make_unique<btCollisionObject>();
-  w.ground->setCollisionShape(w.ground_shape.get());
-  w.ground->setFriction(settings.ground_friction);
-  w.ground->setRestitution(0.0);
-  w.world->addCollisionObject(w.ground.get(), kGroundGroup, kCharacterGroup);
+  w.buildGround();
 
   const Link& base = plan.links[0];
   w.body = std::make_unique<btMultiBody>(static_cast<int>(n) - 1, base.mass_kg, toBt(base.inertia),
@@ -325,7 +466,13 @@ Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPos
       lowest = std::min(lowest,
                         lowestPoint(plan.links[li].shape, w.linkTransform(static_cast<int>(li))));
     glm::dvec3 base_position = initial.base_position;
-    base_position.y += settings.ground_height_m + settings.ground_clearance_m - lowest;
+    // The ground under the character: the highest within half its size of the base.
+    double ground = -std::numeric_limits<double>::max();
+    const double reach = 0.5 * std::max(plan.size_m, 0.1);
+    for (double dx : {-reach, 0.0, reach})
+      for (double dz : {-reach, 0.0, reach})
+        ground = std::max(ground, w.groundHeight(base_position.x + dx, base_position.z + dz));
+    base_position.y += ground + settings.ground_clearance_m - lowest;
     setPose(base_position);
     w.refreshTransforms();
   }
@@ -351,10 +498,127 @@ void World::step(std::span<const double> joint_torques) {
         break;
     }
   }
+  // Scheduled pushes, after the check: a force of impulse / dt at the link's centre of mass for
+  // this one step.
+  for (const auto& [li, impulse] : w.pending_pushes) {
+    const btVector3 force = toBt(impulse / w.dt);
+    if (li == 0)
+      mb.addBaseForce(force);
+    else
+      mb.addLinkForce(Impl::bulletLink(li), force);
+    w.pushed_impulse += impulse;
+  }
+  w.pending_pushes.clear();
   // maxSubSteps 0: exactly one step of dt, no interpolation, no accumulated remainder.
   w.world->stepSimulation(w.dt, 0, w.dt);
   ++w.steps;
   w.readContacts();
+}
+
+Status World::push(int link, const glm::dvec3& impulse_ns) {
+  Impl& w = *impl_;
+  if (link < 0 || link >= static_cast<int>(w.plan.links.size()))
+    return Status::error("push: link " + std::to_string(link) + " is not a link of the character (0.." +
+                         std::to_string(w.plan.links.size() - 1) + ")");
+  if (!std::isfinite(impulse_ns.x) || !std::isfinite(impulse_ns.y) || !std::isfinite(impulse_ns.z))
+    return Status::error("push: the impulse must be finite");
+  w.pending_pushes.emplace_back(link, impulse_ns);
+  return Status();
+}
+
+glm::dvec3 World::pushedImpulse() const {
+  return impl_->pushed_impulse;
+}
+
+Status World::setVelocities(const glm::dvec3& base_linear, const glm::dvec3& base_angular,
+                            std::span<const double> joint_velocities) {
+  Impl& w = *impl_;
+  if (w.steps != 0) return Status::error("initial velocities: set them before the first step");
+  if (joint_velocities.size() != static_cast<size_t>(w.dofs))
+    return Status::error("initial velocities: need one joint velocity per degree of freedom (" +
+                         std::to_string(w.dofs) + ")");
+  for (double v : joint_velocities)
+    if (!std::isfinite(v)) return Status::error("initial velocities: not finite");
+  btMultiBody& mb = *w.body;
+  // The base's linear velocity is that of its centre of mass, not of the base frame's origin.
+  const glm::dmat4 base = w.linkTransform(0);
+  const glm::dvec3 com_offset = glm::dmat3(base) * w.plan.links[0].com;
+  mb.setBaseVel(toBt(base_linear + glm::cross(base_angular, com_offset)));
+  mb.setBaseOmega(toBt(base_angular));
+  for (size_t li = 1; li < w.plan.links.size(); ++li) {
+    const int dofs = physics::dofCount(w.plan.links[li].type);
+    if (dofs == 0) continue;
+    double v[3] = {0.0, 0.0, 0.0};
+    for (int d = 0; d < dofs; ++d) v[d] = joint_velocities[static_cast<size_t>(w.dof_offsets[li] + d)];
+    mb.setJointVelMultiDof(Impl::bulletLink(static_cast<int>(li)), v);
+  }
+  return Status();
+}
+
+Status World::enableServos(std::span<const double> max_torque_nm, double rate) {
+  Impl& w = *impl_;
+  const size_t n = w.plan.links.size();
+  if (w.steps != 0) return Status::error("servos: enable them before the first step");
+  if (!w.servos.empty()) return Status::error("servos: already enabled");
+  if (max_torque_nm.size() != n)
+    return Status::error("servos: max_torque_nm needs one entry per link (" + std::to_string(n) +
+                         ")");
+  if (!(std::isfinite(rate) && rate > 0.0 && rate <= 1.0))
+    return Status::error("servos: rate must be in (0, 1]");
+  w.servo_rate = rate;
+  w.servos.resize(n);
+  btMultiBody& mb = *w.body;
+  for (size_t li = 1; li < n; ++li) {
+    const double limit = max_torque_nm[li];
+    if (!(std::isfinite(limit) && limit >= 0.0))
+      return Status::error("servos: max_torque_nm of link " + std::to_string(li) + " (" +
+                           w.plan.links[li].name + ") must be finite and >= 0");
+    const int i = Impl::bulletLink(static_cast<int>(li));
+    const double impulse = limit * w.dt;
+    if (limit == 0.0) continue;
+    if (w.plan.links[li].type == JointType::kBall) {
+      auto motor = std::make_unique<btMultiBodySphericalJointMotor>(&mb, i, impulse);
+      motor->setMaxAppliedImpulseMultiDof(btVector3(impulse, impulse, impulse));
+      w.servos[li] = std::move(motor);
+    } else if (w.plan.links[li].type == JointType::kHinge) {
+      auto motor = std::make_unique<btMultiBodyJointMotor>(&mb, i, 0.0, impulse);
+      w.servos[li] = std::move(motor);
+    } else {
+      continue;
+    }
+    w.world->addMultiBodyConstraint(w.servos[li].get());
+  }
+  setServoTargets(jointPositions());
+  return Status();
+}
+
+void World::setServoTargets(const LinkPose& target) {
+  Impl& w = *impl_;
+  const double spherical_gain = w.servo_rate / w.world->getSolverInfo().m_erp;
+  for (size_t li = 1; li < w.servos.size(); ++li) {
+    btMultiBodyConstraint* servo = w.servos[li].get();
+    if (servo == nullptr) continue;
+    if (w.plan.links[li].type == JointType::kBall) {
+      auto* motor = static_cast<btMultiBodySphericalJointMotor*>(servo);
+      motor->setPositionTarget(toBt(glm::normalize(target.rotations[li])), spherical_gain);
+    } else {
+      auto* motor = static_cast<btMultiBodyJointMotor*>(servo);
+      motor->setPositionTarget(target.angles[li], w.servo_rate);
+      motor->setVelocityTarget(0.0, 1.0);
+    }
+  }
+}
+
+void World::servoTorques(std::span<double> out) const {
+  const Impl& w = *impl_;
+  std::fill(out.begin(), out.end(), 0.0);
+  for (size_t li = 1; li < w.servos.size(); ++li) {
+    btMultiBodyConstraint* servo = w.servos[li].get();
+    if (servo == nullptr) continue;
+    const int dofs = physics::dofCount(w.plan.links[li].type);
+    for (int d = 0; d < dofs; ++d)
+      out[static_cast<size_t>(w.dof_offsets[li] + d)] = servo->getAppliedImpulse(d) / w.dt;
+  }
 }
 
 double World::dt() const {
@@ -552,6 +816,10 @@ const std::vector<double>& World::linkNormalForces() const {
 glm::dvec3 World::lastContactImpulse() const {
   return impl_->contact_impulse;
 }
+double World::groundHeight(double x, double z) const {
+  return impl_->groundHeight(x, z);
+}
+
 const ExternalLoads& World::externalLoads() const {
   return impl_->loads;
 }

@@ -151,6 +151,12 @@ LinkPose linkPoseFromSkeleton(const BodyPlan& plan, const motion::Skeleton& skel
                               std::span<const glm::dquat> rotations,
                               std::span<const glm::dvec3> translations);
 
+// The character standing: the rig's rest pose (every joint at its rest rotation; a T-pose for BVH
+// rigs), turned upright (feet below the pelvis) if the rig stores it lying down. The plan's soles
+// are level in this pose. The pose the standing tests hold; a simulation starts from it when it
+// does not start from the clip.
+LinkPose standingPose(const BodyPlan& plan, const motion::Skeleton& skeleton);
+
 // Rotation of a link's frame relative to its parent's for a joint coordinate.
 glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double angle);
 

@@ -19,12 +19,36 @@
 
 namespace sinew::physics {
 
+// The ground. The character starts near x = z = 0 facing any way; terrain features lie along +Z
+// (where the bundled characters walk) and are level across X.
+struct TerrainSettings {
+  enum class Kind : std::uint8_t {
+    kFlat,   // a plane at ground_height_m
+    kSlope,  // a plane through (0, ground_height_m, 0) rising along +Z by slope_deg
+    kSteps,  // flat, then a staircase up along +Z from z = step_start_m
+    kRough,  // a heightfield of random heights in [0, amplitude_m] (seeded), 40 m square
+  };
+  Kind kind = Kind::kFlat;
+  double slope_deg = 5.0;       // kSlope: degrees, in (-45, 45)
+  double step_height_m = 0.05;  // kSteps: riser height, metres, (0, 1]
+  double step_depth_m = 0.6;    // kSteps: tread depth, metres, >= 0.1
+  int step_count = 10;          // kSteps: how many steps, 1..1000
+  double step_start_m = 1.0;    // kSteps: z of the first riser, metres
+  double amplitude_m = 0.02;    // kRough: largest height above ground_height_m, metres, (0, 1]
+  double cell_m = 0.2;          // kRough: heightfield spacing, metres, [0.02, 2]
+  std::uint64_t seed = 1;       // kRough: same seed, same ground
+
+  Status validate() const;  // the message names the offending field
+};
+const char* terrainKindName(TerrainSettings::Kind kind);  // "flat", "slope", "steps", "rough"
+
 struct WorldSettings {
   double step_hz = 240.0;             // fixed simulation rate, steps per second, 30..10000; the
                                       // step never follows the display's frame rate
   double gravity_m_s2 = 9.81;         // downwards along -Y, m/s^2, >= 0
   double ground_friction = 0.9;       // Coulomb friction coefficient of the ground, >= 0
   double ground_height_m = 0.0;       // the ground plane's height, metres
+  TerrainSettings terrain;
   int solver_iterations = 10;         // constraint solver iterations per step, 1..1000
   bool place_on_ground = true;        // lift or lower the initial pose so its lowest shape point is
                                       // `ground_clearance_m` above the ground
@@ -55,6 +79,31 @@ class World {
   // joints 3, hinges 1) for one fixed step, then advances the simulation by dt().
   // Precondition: joint_torques.size() == dofCount().
   void step(std::span<const double> joint_torques);
+
+  // A scheduled push: `impulse_ns` (world, N s) delivered to the link's centre of mass during the
+  // next step, as a force of impulse / dt for that one step. The only load besides gravity and
+  // the ground that ever acts on the character (externalLoads() is read before it is applied).
+  Status push(int link, const glm::dvec3& impulse_ns);
+  glm::dvec3 pushedImpulse() const;  // sum of the pushes delivered so far, N s
+
+  // Initial velocities (before the first step): the base frame origin's linear and angular
+  // velocity (world, m/s and rad/s) and the joint velocities (dofs, as jointVelocities gives
+  // them). A state, not a force: a character can enter the simulation already walking.
+  Status setVelocities(const glm::dvec3& base_linear, const glm::dvec3& base_angular,
+                       std::span<const double> joint_velocities);
+
+  // Joint servos: implicit PD. Each actuated joint gets a Bullet joint motor, a constraint the
+  // solver resolves together with the ground contacts, that drives the joint towards its target
+  // coordinate: the joint's velocity after the step is asked to close `rate` of the position
+  // error (and cancel its velocity), with a torque no larger than the link's limit (ball joints:
+  // per axis of the joint frame). The motor acts between a link and its parent only: an internal
+  // joint torque, like step()'s. Stable for any body mass at any rate in (0, 1], which explicit PD
+  // at 240 Hz is not (see docs/physics.md). Call once, before the first step; the targets start
+  // at the current pose. `max_torque_nm` (links): 0 leaves a joint unactuated.
+  Status enableServos(std::span<const double> max_torque_nm, double rate);
+  void setServoTargets(const LinkPose& target);
+  // Torques the servos applied in the last step (dofs, N m, each joint's frame).
+  void servoTorques(std::span<double> out) const;
 
   double dt() const;    // 1 / step_hz, seconds
   double time() const;  // simulated seconds since creation
@@ -94,6 +143,8 @@ class World {
   // The largest external loads seen on the multibody before any step so far (zero when only
   // joint torques were applied), and whether every link state is finite.
   const ExternalLoads& externalLoads() const;
+  // Height of the ground at (x, z), world metres (the top of a step, the heightfield's surface).
+  double groundHeight(double x, double z) const;
   bool finite() const;
 
  private:

@@ -1,0 +1,87 @@
+// A simulation run: a character built from a skeleton tracks a TargetMotion on a terrain, with
+// scheduled pushes, for a fixed time; what it did is recorded on the original skeleton (merged
+// joints follow the target) and summarised (fell, distance, tracking error, energy, contacts).
+// The same inputs give bit-identical results: every run builds a fresh World.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sinew/core/status.h"
+#include "sinew/motion/clip.h"
+#include "sinew/motion/skeleton.h"
+#include "sinew/physics/body_plan.h"
+#include "sinew/physics/tracking.h"
+#include "sinew/physics/world.h"
+#include "sinew/spectral/target_motion.h"
+
+namespace sinew::physics {
+
+struct Push {
+  double time_s = 1.0;           // when, seconds from the start, >= 0
+  glm::dvec3 impulse_ns{0.0};    // world, N s
+  std::string link;              // the link (its skeleton joint's name); empty: the base
+};
+
+struct SimulationSettings {
+  double seconds = 10.0;      // simulated time, (0, 3600]
+  WorldSettings world;
+  TrackingSettings tracking;
+  bool start_moving = true;   // start in the target's pose at t = 0 with its velocities (the
+                              // character enters walking); false: from the standing pose at
+                              // rest, blending into the motion over tracking.ramp_s
+  std::vector<Push> pushes;
+  double record_fps = 30.0;   // frames of the recording per second, > 0
+  double fall_height_ratio = 0.5;  // fallen when the centre of mass drops below this share of
+                                   // its starting height above the ground, (0, 1)
+  bool stop_at_fall = true;   // end the run when the character falls
+
+  Status validate() const;  // the message names the offending field
+};
+
+struct Footfall {
+  int foot = 0;             // index into SimulationReport::feet
+  double time_s = 0.0;      // touchdown
+  glm::dvec3 position{0.0};  // the foot's pivot at touchdown, world metres
+};
+
+struct SimulationReport {
+  bool fell = false;
+  double fall_time_s = -1.0;  // -1: did not fall
+  std::string fall_reason;    // e.g. "LeftHand touched the ground", "centre of mass at 0.41 m"
+  double seconds = 0.0;       // simulated (less than asked when it stopped at a fall)
+  double distance_m = 0.0;    // horizontal travel of the centre of mass, start to end
+  double speed_m_s = 0.0;     // distance / seconds
+  double track_err_rad_rms = 0.0;  // RMS over steps and actuated joints of the angle between each
+                                   // joint's rotation and the motion's target (before balance
+                                   // feedback), radians
+  double energy_j = 0.0;           // mechanical work of the joint torques, integral of sum |tau w|
+  double torque_sq_per_kg = 0.0;   // integral of sum tau^2 dt / mass, N^2 m^2 s / kg
+  double min_uprightness = 1.0;    // lowest cosine between the pelvis's up and the world's up
+  double mass_kg = 0.0;
+  glm::dvec3 pushed_impulse_ns{0.0};  // the pushes delivered
+  std::vector<std::string> feet;      // foot link names
+  std::vector<double> contact_share;  // (feet) share of steps with the foot on the ground
+  std::vector<Footfall> footfalls;
+  motion::Clip motion;              // what the character did, on the original skeleton, at
+                                    // record_fps
+  std::vector<glm::dvec3> com;      // (recorded frames) centre of mass, world metres
+};
+
+// Runs the simulation. The skeleton must be the one `plan` and `target` were made from. Fails on
+// invalid settings, a push naming no link, or a target that does not match the skeleton.
+Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                  const spectral::TargetMotion& target,
+                                  const SimulationSettings& settings = {});
+
+// A skeleton pose (local rotations and translations, joints) for the world's present state:
+// each link's simulated rotation on its pivot joint, the joints merged into it at `reference`
+// (the target's pose), the base on the root.
+void skeletonPoseFromWorld(const World& world, const motion::Skeleton& skeleton,
+                           std::span<const glm::dquat> reference_rotations,
+                           std::span<const glm::dvec3> reference_translations,
+                           std::span<glm::dquat> rotations, std::span<glm::dvec3> translations);
+
+}  // namespace sinew::physics

@@ -1,0 +1,159 @@
+// Tracking a TargetMotion with joint servos, and SIMBICON-style balance feedback.
+//
+// Each step the controller evaluates the target's harmonic series (FourierTargets), maps the
+// skeleton pose into joint coordinates, corrects the hips for balance and hands the result to the
+// world's joint servos (World::enableServos: implicit PD solved with the contacts, torques
+// bounded per joint). Nothing acts on the base: the character moves by its joint torques, gravity
+// and the ground only.
+//
+// Balance feedback (Yin, Loken and van de Panne 2007), for characters with two feet whose legs
+// meet at a common link (the pelvis): with one foot down (the stance foot), the swing hip's target
+// is turned, in the world, by
+//   delta = c_d * d + c_v * v
+// per horizontal direction (sagittal: the character's forward; coronal: its side), d the centre
+// of mass's offset from the stance foot and v its velocity, each less the target motion's own at
+// that moment (the target already swings the leg for its nominal gait), so that the swing foot
+// lands where it catches the body; and the stance hip's target is replaced, by the share `torso`, with the
+// rotation that brings the pelvis to the target's attitude (its tilt, at the pelvis's present
+// heading). Both hips' targets are set relative to the desired pelvis, not the present one.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "sinew/core/status.h"
+#include "sinew/motion/skeleton.h"
+#include "sinew/physics/body_plan.h"
+#include "sinew/spectral/target_motion.h"
+
+namespace sinew::physics {
+
+class World;
+
+// A TargetMotion's rotations evaluated by the angle-addition recurrence: sin and cos of the
+// stride angle x = omega0 t once per call, sin(n x) and cos(n x) from them by
+//   sin((n+1)x) = sin(nx) cos(x) + cos(nx) sin(x),  cos((n+1)x) = cos(nx) cos(x) - sin(nx) sin(x),
+// and each term B sin(n x + D) as (B cos D) sin(n x) + (B sin D) cos(n x): one sin/cos pair per
+// step for all channels (plus one per secondary term), not one sin() per harmonic.
+class FourierTargets {
+ public:
+  // Precondition: target validated against its skeleton.
+  explicit FourierTargets(const spectral::TargetMotion& target);
+
+  // Local rotations (joints) at time t, as TargetMotion::pose gives them (to 1e-12).
+  void evaluate(double t, std::span<glm::dquat> rotations);
+  int maxHarmonic() const { return max_n_; }
+
+ private:
+  struct Term {
+    int n = 1;
+    double b_cos_d = 0.0;
+    double b_sin_d = 0.0;
+  };
+  struct Channel {
+    int joint = 0;
+    int axis = 0;
+    double mean = 0.0;
+    std::vector<Term> terms;
+  };
+  double omega0_ = 0.0;
+  int max_n_ = 0;
+  std::vector<glm::dquat> base_;
+  std::vector<Channel> channels_;
+  std::vector<spectral::SecondaryTerm> secondary_;
+  std::vector<double> sin_n_, cos_n_;
+  std::vector<glm::dvec3> vectors_;
+  std::vector<char> rotates_;
+};
+
+// SIMBICON gains: what the evolutionary search tunes besides the harmonics.
+struct BalanceGains {
+  double cd_sagittal = 0.5;  // swing-hip turn per metre of centre-of-mass offset, rad/m
+  double cv_sagittal = 0.2;  // per m/s of centre-of-mass velocity, rad/(m/s)
+  double cd_coronal = 0.5;
+  double cv_coronal = 0.2;
+  double torso = 1.0;        // share of the stance hip that holds the pelvis's attitude, 0..1
+};
+
+struct TrackingSettings {
+  double servo_rate = 0.2;             // World::enableServos rate, (0, 1]
+  double support_torque_scale = 0.25;  // torque limit per (body weight x rig size) for joints that
+                                       // carry the body (their subtree holds a foot), > 0
+  double limb_torque_scale = 1.0;      // per (subtree weight x rig size) for the others, > 0
+  double gravity_m_s2 = 9.81;          // for the limits above, > 0
+  double ramp_s = 1.0;                 // the targets blend from the standing pose into the motion
+                                       // over this time, seconds, >= 0
+  bool feedback = true;                // balance feedback (only for two-footed characters)
+  BalanceGains balance;
+
+  Status validate() const;  // the message names the offending field
+};
+
+// Joint torque limits (links, N m; 0 for the base): support_scale x body weight x size for
+// joints whose subtree holds a foot, limb_scale x subtree weight x size for the others.
+std::vector<double> jointTorqueLimits(const BodyPlan& plan, double support_scale,
+                                      double limb_scale, double gravity_m_s2);
+
+class TrackingController {
+ public:
+  // Enables the world's servos and prepares the targets. `standing`: the pose the ramp starts
+  // from (the world's initial pose, usually). Fails on invalid settings, a target that does not
+  // match the skeleton, or a world that has stepped.
+  static Result<std::unique_ptr<TrackingController>> create(
+      World& world, const motion::Skeleton& skeleton, const spectral::TargetMotion& target,
+      const LinkPose& standing, const TrackingSettings& settings = {});
+
+  // Sets the servo targets for the world's present time and state; call before every step.
+  void update(World& world);
+
+  const LinkPose& target() const { return target_; }        // the last targets given the servos
+  const LinkPose& motionTarget() const { return motion_; }  // the same before balance feedback
+  int stanceFoot() const { return stance_; }  // index into the plan's feet (link order), -1: none
+  bool balancing() const { return balance_; }  // two feet under a common link: feedback applies
+  const std::vector<int>& feet() const { return feet_; }  // foot links
+
+ private:
+  TrackingController() = default;
+  void applyFeedback(const World& world);
+  void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
+
+  const BodyPlan* plan_ = nullptr;
+  const motion::Skeleton* skeleton_ = nullptr;
+  TrackingSettings settings_;
+  std::unique_ptr<FourierTargets> fourier_;
+  LinkPose standing_;
+  LinkPose motion_;
+  LinkPose target_;
+  std::vector<glm::dquat> rotations_;     // (joints) scratch
+  std::vector<glm::dvec3> translations_;  // (joints) the target's base translations
+  std::vector<int> feet_;                 // foot links
+  std::vector<int> hips_;                 // (feet) the leg's top link below the common link
+  int pelvis_ = 0;                        // the link the legs meet at
+  glm::dvec3 forward_local_{0.0, 0.0, 1.0};  // the character's forward in the pelvis link frame
+  bool balance_ = false;
+  int stance_ = -1;
+  glm::dvec3 reference_com_{0.0};           // the target pose's centre of mass, world m
+  glm::dvec3 reference_velocity_{0.0};      // its velocity, m/s
+  std::vector<glm::dvec3> reference_ankles_;  // (feet) the target pose's foot pivots
+  bool have_reference_ = false;
+};
+
+// A character's state taken from a target: its pose at time t and its velocities (central
+// differences over 1 ms), so a simulation can start in the motion rather than from rest.
+struct MotionState {
+  LinkPose pose;
+  glm::dvec3 base_linear{0.0};           // base frame origin, world m/s
+  glm::dvec3 base_angular{0.0};          // world rad/s
+  std::vector<double> joint_velocities;  // (dofs) as World::jointVelocities
+};
+MotionState targetState(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                        const spectral::TargetMotion& target, double t);
+
+// World rotations of every link for a pose (links), by forward kinematics from the base.
+std::vector<glm::dquat> linkWorldRotations(const BodyPlan& plan, const LinkPose& pose);
+
+}  // namespace sinew::physics

@@ -1,0 +1,249 @@
+#include "sinew/physics/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "sinew/physics/controller.h"
+
+namespace sinew::physics {
+namespace {
+
+// Links that may touch the ground without a fall: the feet and the links below them.
+std::vector<char> groundLinks(const BodyPlan& plan) {
+  std::vector<char> allowed(plan.links.size(), 0);
+  for (size_t li = 0; li < plan.links.size(); ++li) {
+    const int parent = plan.links[li].parent;
+    allowed[li] = plan.links[li].foot || (parent >= 0 && allowed[static_cast<size_t>(parent)]);
+  }
+  return allowed;
+}
+
+glm::dmat4 localTransform(const glm::dvec3& translation, const glm::dquat& rotation) {
+  glm::dmat4 m = glm::mat4_cast(glm::normalize(rotation));
+  m[3] = glm::dvec4(translation, 1.0);
+  return m;
+}
+
+}  // namespace
+
+Status SimulationSettings::validate() const {
+  if (!(std::isfinite(seconds) && seconds > 0.0 && seconds <= 3600.0))
+    return Status::error("seconds must be in (0, 3600]");
+  if (Status s = world.validate(); !s.ok()) return Status::error("world: " + s.message());
+  if (Status s = tracking.validate(); !s.ok()) return Status::error("tracking: " + s.message());
+  if (!(std::isfinite(record_fps) && record_fps > 0.0 && record_fps <= world.step_hz))
+    return Status::error("record_fps must be in (0, step_hz]");
+  if (!(std::isfinite(fall_height_ratio) && fall_height_ratio > 0.0 && fall_height_ratio < 1.0))
+    return Status::error("fall_height_ratio must be in (0, 1)");
+  for (size_t i = 0; i < pushes.size(); ++i) {
+    const Push& p = pushes[i];
+    if (!(std::isfinite(p.time_s) && p.time_s >= 0.0) || !std::isfinite(p.impulse_ns.x) ||
+        !std::isfinite(p.impulse_ns.y) || !std::isfinite(p.impulse_ns.z))
+      return Status::error("pushes[" + std::to_string(i) + "]: time must be >= 0, impulse finite");
+  }
+  return Status();
+}
+
+void skeletonPoseFromWorld(const World& world, const motion::Skeleton& skeleton,
+                           std::span<const glm::dquat> reference_rotations,
+                           std::span<const glm::dvec3> reference_translations,
+                           std::span<glm::dquat> rotations, std::span<glm::dvec3> translations) {
+  const BodyPlan& plan = world.plan();
+  const size_t joints = static_cast<size_t>(skeleton.jointCount());
+  std::copy(reference_rotations.begin(), reference_rotations.begin() + joints, rotations.begin());
+  std::copy(reference_translations.begin(), reference_translations.begin() + joints,
+            translations.begin());
+  const LinkPose pose = world.jointPositions();
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const Link& link = plan.links[li];
+    // The chain's product is the link's relative rotation: solve for its last joint.
+    glm::dquat above(1.0, 0.0, 0.0, 0.0);
+    for (size_t k = 0; k + 1 < link.chain.size(); ++k)
+      above = above * rotations[static_cast<size_t>(link.chain[k])];
+    const glm::dquat relative = linkRelativeRotation(link, pose.rotations[li], pose.angles[li]);
+    rotations[static_cast<size_t>(link.joint)] = glm::normalize(glm::inverse(above) * relative);
+  }
+  // The base: its world transform is the product of the base chain's local transforms; the
+  // joints below the root keep the reference's, the root takes the rest.
+  if (!plan.base_chain.empty()) {
+    glm::dmat4 below(1.0);
+    for (size_t k = 1; k < plan.base_chain.size(); ++k) {
+      const size_t j = static_cast<size_t>(plan.base_chain[k]);
+      below = below * localTransform(translations[j], rotations[j]);
+    }
+    const glm::dmat4 base = localTransform(pose.base_position, pose.base_rotation);
+    const glm::dmat4 root = base * glm::inverse(below);
+    const size_t r = static_cast<size_t>(plan.base_chain[0]);
+    translations[r] = glm::dvec3(root[3]);
+    rotations[r] = glm::normalize(glm::quat_cast(glm::dmat3(root)));
+  }
+}
+
+Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                  const spectral::TargetMotion& target,
+                                  const SimulationSettings& settings) {
+  if (Status s = settings.validate(); !s.ok()) return Status::error("simulation: " + s.message());
+  if (Status s = target.validate(skeleton); !s.ok())
+    return Status::error("target motion: " + s.message());
+  std::vector<int> push_links;
+  for (const Push& p : settings.pushes) {
+    int link = 0;
+    if (!p.link.empty()) {
+      const int joint = skeleton.findJoint(p.link);
+      if (joint < 0 || plan.links[static_cast<size_t>(plan.link_of_joint[static_cast<size_t>(joint)])].joint != joint)
+        return Status::error("push: no link named \"" + p.link + "\" (a joint of the skeleton with a body of its own)");
+      link = plan.link_of_joint[static_cast<size_t>(joint)];
+    }
+    push_links.push_back(link);
+  }
+
+  const LinkPose standing = standingPose(plan, skeleton);
+  const MotionState state = targetState(plan, skeleton, target, 0.0);
+  Result<std::unique_ptr<World>> created =
+      World::create(plan, settings.start_moving ? state.pose : standing, settings.world);
+  if (!created.ok()) return created.status();
+  World& world = *created.value();
+  TrackingSettings tracking = settings.tracking;
+  if (settings.start_moving) {
+    if (Status s = world.setVelocities(state.base_linear, state.base_angular, state.joint_velocities);
+        !s.ok())
+      return s;
+    tracking.ramp_s = 0.0;
+  }
+  Result<std::unique_ptr<TrackingController>> made =
+      TrackingController::create(world, skeleton, target, standing, tracking);
+  if (!made.ok()) return made.status();
+  TrackingController& controller = *made.value();
+
+  SimulationReport report;
+  report.mass_kg = world.totalMass();
+  const std::vector<int>& feet = controller.feet();
+  for (int f : feet) report.feet.push_back(plan.links[static_cast<size_t>(f)].name);
+  report.contact_share.assign(feet.size(), 0.0);
+  const std::vector<char> may_touch = groundLinks(plan);
+
+  const size_t n = plan.links.size();
+  const size_t dofs = static_cast<size_t>(world.dofCount());
+  const size_t joints = static_cast<size_t>(skeleton.jointCount());
+  const std::vector<int> offsets = plan.dofOffsets();
+  std::vector<double> zero(dofs, 0.0), torques(dofs, 0.0), velocities(dofs, 0.0);
+  std::vector<glm::dquat> reference_rotations(joints), rotations(joints);
+  std::vector<glm::dvec3> reference_translations(joints), translations(joints);
+  std::vector<glm::dmat4> transforms(n);
+  std::vector<char> was_down(feet.size(), 1);
+
+  report.motion.name = target.name + "_simulated";
+  report.motion.frame_time = 1.0 / settings.record_fps;
+  report.motion.joint_count = static_cast<int>(joints);
+  auto record = [&] {
+    target.pose(world.time(), reference_rotations, reference_translations);
+    skeletonPoseFromWorld(world, skeleton, reference_rotations, reference_translations, rotations,
+                          translations);
+    report.motion.rotations.insert(report.motion.rotations.end(), rotations.begin(), rotations.end());
+    report.motion.translations.insert(report.motion.translations.end(), translations.begin(),
+                                      translations.end());
+    ++report.motion.frame_count;
+    report.com.push_back(world.centreOfMass());
+  };
+
+  const glm::dvec3 start = world.centreOfMass();
+  const double start_height = start.y - world.groundHeight(start.x, start.z);
+  const long long steps = std::llround(settings.seconds / world.dt());
+  const double record_every = world.dt() > 0.0 ? 1.0 / (settings.record_fps * world.dt()) : 1.0;
+  double next_record = 0.0;
+  double error_sum = 0.0;
+  long long error_count = 0;
+  std::vector<char> pushed(settings.pushes.size(), 0);
+  record();
+  next_record += record_every;
+  long long step = 0;
+  for (; step < steps; ++step) {
+    for (size_t p = 0; p < settings.pushes.size(); ++p)
+      if (!pushed[p] && world.time() + 0.5 * world.dt() >= settings.pushes[p].time_s) {
+        pushed[p] = 1;
+        if (Status s = world.push(push_links[p], settings.pushes[p].impulse_ns); !s.ok()) return s;
+      }
+    controller.update(world);
+    world.step(zero);
+    if (!world.finite()) {
+      report.fell = true;
+      report.fall_time_s = world.time();
+      report.fall_reason = "the simulation diverged (a non-finite state)";
+      break;
+    }
+
+    // Tracking error against the motion's target, energy and torques.
+    const LinkPose now = world.jointPositions();
+    const LinkPose& wanted = controller.motionTarget();
+    world.servoTorques(torques);
+    world.jointVelocities(velocities);
+    for (size_t li = 1; li < n; ++li) {
+      const JointType type = plan.links[li].type;
+      if (type == JointType::kBall)
+        error_sum += std::pow(glm::length(rotationVectorOf(glm::inverse(now.rotations[li]) *
+                                                           wanted.rotations[li])),
+                              2.0);
+      else if (type == JointType::kHinge)
+        error_sum += std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
+      if (type == JointType::kBall || type == JointType::kHinge) ++error_count;
+    }
+    for (size_t d = 0; d < dofs; ++d) {
+      report.energy_j += std::abs(torques[d] * velocities[d]) * world.dt();
+      report.torque_sq_per_kg += torques[d] * torques[d] * world.dt() / report.mass_kg;
+    }
+
+    // Contacts: footfalls, and any other link on the ground is a fall.
+    const std::vector<std::uint8_t>& contacts = world.linkContacts();
+    world.linkTransforms(transforms);
+    for (size_t f = 0; f < feet.size(); ++f) {
+      const bool down = contacts[static_cast<size_t>(feet[f])] > 0;
+      if (down) report.contact_share[f] += 1.0;
+      if (down && !was_down[f])
+        report.footfalls.push_back({static_cast<int>(f), world.time(),
+                                    glm::dvec3(transforms[static_cast<size_t>(feet[f])][3])});
+      was_down[f] = down ? 1 : 0;
+    }
+    const glm::dvec3 com = world.centreOfMass();
+    const glm::dvec3 up = glm::dmat3(transforms[0]) * glm::dvec3(0.0, 1.0, 0.0);
+    report.min_uprightness = std::min(report.min_uprightness, up.y);
+    if (!report.fell) {
+      for (size_t li = 0; li < n; ++li)
+        if (contacts[li] > 0 && !may_touch[li]) {
+          report.fell = true;
+          report.fall_reason = plan.links[li].name + " touched the ground";
+          break;
+        }
+      const double height = com.y - world.groundHeight(com.x, com.z);
+      if (!report.fell && height < settings.fall_height_ratio * start_height) {
+        std::ostringstream reason;
+        reason.precision(3);
+        reason << "centre of mass " << height << " m above the ground (started at "
+               << start_height << " m)";
+        report.fell = true;
+        report.fall_reason = reason.str();
+      }
+      if (report.fell) report.fall_time_s = world.time();
+    }
+    if (static_cast<double>(step + 1) + 1e-9 >= next_record) {
+      record();
+      next_record += record_every;
+    }
+    if (report.fell && settings.stop_at_fall) {
+      ++step;
+      break;
+    }
+  }
+  report.seconds = world.time();
+  const glm::dvec3 end = world.centreOfMass();
+  report.distance_m = glm::length(glm::dvec2(end.x - start.x, end.z - start.z));
+  report.speed_m_s = report.seconds > 0.0 ? report.distance_m / report.seconds : 0.0;
+  report.track_err_rad_rms = error_count > 0 ? std::sqrt(error_sum / static_cast<double>(error_count)) : 0.0;
+  for (double& share : report.contact_share) share /= std::max<long long>(1, step);
+  report.pushed_impulse_ns = world.pushedImpulse();
+  return report;
+}
+
+}  // namespace sinew::physics

@@ -1,0 +1,338 @@
+#include "sinew/physics/tracking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "sinew/physics/controller.h"
+#include "sinew/physics/world.h"
+#include "sinew/spectral/signals.h"
+
+namespace sinew::physics {
+namespace {
+
+constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
+const glm::dquat kIdentity(1.0, 0.0, 0.0, 0.0);
+
+bool isAncestorLink(const BodyPlan& plan, int ancestor, int link) {
+  while (link > ancestor) link = plan.links[static_cast<size_t>(link)].parent;
+  return link == ancestor;
+}
+
+// Heading angle about +Y of a rotation applied to a horizontal forward vector.
+double headingOf(const glm::dquat& rotation, const glm::dvec3& forward_local) {
+  const glm::dvec3 f = rotation * forward_local;
+  return std::atan2(f.x, f.z);
+}
+
+glm::dquat yaw(double angle) { return glm::angleAxis(angle, kUp); }
+
+// The ball-joint coordinate that gives `link` the world rotation `child_world` under a parent at
+// `parent_world`.
+glm::dquat coordinateFor(const Link& link, const glm::dquat& parent_world,
+                         const glm::dquat& child_world) {
+  glm::dquat q = glm::normalize(glm::inverse(link.zero_rotation) * glm::inverse(parent_world) *
+                                child_world);
+  if (q.w < 0.0) q = -q;
+  return q;
+}
+
+}  // namespace
+
+FourierTargets::FourierTargets(const spectral::TargetMotion& target)
+    : omega0_(target.omega0),
+      base_(target.base_rotations),
+      secondary_(target.secondary),
+      vectors_(target.base_rotations.size()),
+      rotates_(target.base_rotations.size(), 0) {
+  for (const spectral::ChannelModel& model : target.channels) {
+    if (model.kind != spectral::SignalKind::kRotation) continue;
+    Channel channel;
+    channel.joint = model.joint;
+    channel.axis = model.axis;
+    channel.mean = model.mean;
+    for (const spectral::Harmonic& h : model.terms) {
+      channel.terms.push_back({h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)});
+      max_n_ = std::max(max_n_, h.n);
+    }
+    rotates_[static_cast<size_t>(model.joint)] = 1;
+    channels_.push_back(std::move(channel));
+  }
+  for (const spectral::SecondaryTerm& term : secondary_) rotates_[static_cast<size_t>(term.joint)] = 1;
+  sin_n_.assign(static_cast<size_t>(max_n_) + 1, 0.0);
+  cos_n_.assign(static_cast<size_t>(max_n_) + 1, 1.0);
+}
+
+void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations) {
+  const double x = omega0_ * t;
+  const double s1 = std::sin(x), c1 = std::cos(x);
+  for (size_t n = 1; n < sin_n_.size(); ++n) {
+    sin_n_[n] = sin_n_[n - 1] * c1 + cos_n_[n - 1] * s1;
+    cos_n_[n] = cos_n_[n - 1] * c1 - sin_n_[n - 1] * s1;
+  }
+  std::fill(vectors_.begin(), vectors_.end(), glm::dvec3(0.0));
+  for (const Channel& channel : channels_) {
+    double value = channel.mean;
+    for (const Term& term : channel.terms) {
+      const size_t n = static_cast<size_t>(term.n);
+      value += term.b_cos_d * sin_n_[n] + term.b_sin_d * cos_n_[n];
+    }
+    vectors_[static_cast<size_t>(channel.joint)][channel.axis] = value;
+  }
+  for (const spectral::SecondaryTerm& term : secondary_)
+    vectors_[static_cast<size_t>(term.joint)][term.axis] +=
+        term.amplitude * std::sin(term.omega * t + term.phase);
+  for (size_t j = 0; j < base_.size(); ++j)
+    rotations[j] = rotates_[j] != 0
+                       ? glm::normalize(base_[j] * spectral::fromRotationVector(vectors_[j]))
+                       : base_[j];
+}
+
+Status TrackingSettings::validate() const {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!(positive(servo_rate) && servo_rate <= 1.0)) return Status::error("servo_rate must be in (0, 1]");
+  if (!positive(support_torque_scale)) return Status::error("support_torque_scale must be > 0");
+  if (!positive(limb_torque_scale)) return Status::error("limb_torque_scale must be > 0");
+  if (!positive(gravity_m_s2)) return Status::error("gravity_m_s2 must be > 0");
+  if (!(std::isfinite(ramp_s) && ramp_s >= 0.0)) return Status::error("ramp_s must be >= 0");
+  const BalanceGains& b = balance;
+  for (double g : {b.cd_sagittal, b.cv_sagittal, b.cd_coronal, b.cv_coronal})
+    if (!std::isfinite(g))
+      return Status::error("balance gains (cd_sagittal, cv_sagittal, cd_coronal, cv_coronal) must be finite");
+  if (!(std::isfinite(b.torso) && b.torso >= 0.0 && b.torso <= 1.0))
+    return Status::error("balance.torso must be in [0, 1]");
+  return Status();
+}
+
+std::vector<double> jointTorqueLimits(const BodyPlan& plan, double support_scale,
+                                      double limb_scale, double gravity_m_s2) {
+  const size_t n = plan.links.size();
+  std::vector<double> subtree(n, 0.0);
+  for (size_t li = n; li-- > 0;) {
+    subtree[li] += plan.links[li].mass_kg;
+    if (plan.links[li].parent >= 0) subtree[static_cast<size_t>(plan.links[li].parent)] += subtree[li];
+  }
+  std::vector<double> limits(n, 0.0);
+  for (size_t li = 1; li < n; ++li) {
+    const Link& link = plan.links[li];
+    limits[li] = link.supports ? support_scale * plan.total_mass_kg * gravity_m_s2 * plan.size_m
+                               : limb_scale * subtree[li] * gravity_m_s2 * plan.size_m;
+  }
+  return limits;
+}
+
+std::vector<glm::dquat> linkWorldRotations(const BodyPlan& plan, const LinkPose& pose) {
+  std::vector<glm::dquat> world(plan.links.size(), pose.base_rotation);
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const Link& link = plan.links[li];
+    world[li] = glm::normalize(world[static_cast<size_t>(link.parent)] *
+                               linkRelativeRotation(link, pose.rotations[li], pose.angles[li]));
+  }
+  return world;
+}
+
+MotionState targetState(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                        const spectral::TargetMotion& target, double t) {
+  const size_t joints = static_cast<size_t>(skeleton.jointCount());
+  std::vector<glm::dquat> rotations(joints);
+  std::vector<glm::dvec3> translations(joints);
+  auto poseAt = [&](double time) {
+    target.pose(time, rotations, translations);
+    return linkPoseFromSkeleton(plan, skeleton, rotations, translations);
+  };
+  constexpr double h = 5e-4;
+  MotionState state;
+  state.pose = poseAt(t);
+  const LinkPose before = poseAt(t - h), after = poseAt(t + h);
+  state.base_linear = (after.base_position - before.base_position) / (2.0 * h);
+  state.base_angular =
+      rotationVectorOf(after.base_rotation * glm::inverse(before.base_rotation)) / (2.0 * h);
+  const std::vector<int> offsets = plan.dofOffsets();
+  state.joint_velocities.assign(static_cast<size_t>(plan.dofCount()), 0.0);
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const size_t o = static_cast<size_t>(offsets[li]);
+    if (plan.links[li].type == JointType::kBall) {
+      const glm::dvec3 w =
+          rotationVectorOf(glm::inverse(before.rotations[li]) * after.rotations[li]) / (2.0 * h);
+      for (int d = 0; d < 3; ++d) state.joint_velocities[o + static_cast<size_t>(d)] = w[d];
+    } else if (plan.links[li].type == JointType::kHinge) {
+      state.joint_velocities[o] = (after.angles[li] - before.angles[li]) / (2.0 * h);
+    }
+  }
+  return state;
+}
+
+Result<std::unique_ptr<TrackingController>> TrackingController::create(
+    World& world, const motion::Skeleton& skeleton, const spectral::TargetMotion& target,
+    const LinkPose& standing, const TrackingSettings& settings) {
+  if (Status s = settings.validate(); !s.ok()) return Status::error("tracking settings: " + s.message());
+  if (Status s = target.validate(skeleton); !s.ok()) return Status::error("target motion: " + s.message());
+  const BodyPlan& plan = world.plan();
+  if (standing.rotations.size() != plan.links.size() || standing.angles.size() != plan.links.size())
+    return Status::error("tracking: the standing pose needs one entry per link");
+  const std::vector<double> limits = jointTorqueLimits(plan, settings.support_torque_scale,
+                                                       settings.limb_torque_scale,
+                                                       settings.gravity_m_s2);
+  if (Status s = world.enableServos(limits, settings.servo_rate); !s.ok()) return s;
+
+  std::unique_ptr<TrackingController> c(new TrackingController());
+  c->plan_ = &world.plan();
+  c->skeleton_ = &skeleton;
+  c->settings_ = settings;
+  c->fourier_ = std::make_unique<FourierTargets>(target);
+  c->standing_ = standing;
+  c->rotations_.resize(static_cast<size_t>(skeleton.jointCount()));
+  c->translations_ = target.base_translations;
+  for (size_t li = 0; li < plan.links.size(); ++li)
+    if (plan.links[li].foot) c->feet_.push_back(static_cast<int>(li));
+
+  // Two feet: the legs meet at their lowest common link; each hip is the leg's top link below it.
+  if (c->feet_.size() == 2) {
+    int common = c->feet_[0];
+    while (common > 0 && !isAncestorLink(plan, common, c->feet_[1]))
+      common = plan.links[static_cast<size_t>(common)].parent;
+    c->pelvis_ = common;
+    for (int foot : c->feet_) {
+      int hip = foot;
+      while (plan.links[static_cast<size_t>(hip)].parent != common)
+        hip = plan.links[static_cast<size_t>(hip)].parent;
+      c->hips_.push_back(hip);
+    }
+    c->balance_ = c->hips_[0] != c->hips_[1] &&
+                  plan.links[static_cast<size_t>(c->hips_[0])].type == JointType::kBall &&
+                  plan.links[static_cast<size_t>(c->hips_[1])].type == JointType::kBall;
+  }
+  // Forward: the feet's soles point forward (their boxes' +Z); in the pelvis link's frame.
+  const std::vector<glm::dquat> standing_world = linkWorldRotations(plan, standing);
+  glm::dvec3 forward(0.0);
+  for (int foot : c->feet_) {
+    const Link& link = plan.links[static_cast<size_t>(foot)];
+    forward += standing_world[static_cast<size_t>(foot)] * (link.shape.rotation * glm::dvec3(0, 0, 1));
+  }
+  forward.y = 0.0;
+  if (glm::length(forward) < 1e-9) forward = glm::dvec3(0.0, 0.0, 1.0);
+  c->forward_local_ = glm::inverse(standing_world[static_cast<size_t>(c->pelvis_)]) * glm::normalize(forward);
+  c->target_ = standing;
+  c->motion_ = standing;
+  return c;
+}
+
+void TrackingController::update(World& world) {
+  const BodyPlan& plan = *plan_;
+  const double t = world.time();
+  fourier_->evaluate(t, rotations_);
+  motion_ = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
+  // Ramp from the standing pose into the motion.
+  const double ramp = settings_.ramp_s > 0.0 ? std::clamp(t / settings_.ramp_s, 0.0, 1.0) : 1.0;
+  if (ramp < 1.0) {
+    const double w = ramp * ramp * (3.0 - 2.0 * ramp);  // smoothstep
+    for (size_t li = 1; li < plan.links.size(); ++li) {
+      motion_.rotations[li] = glm::slerp(standing_.rotations[li], motion_.rotations[li], w);
+      motion_.angles[li] = standing_.angles[li] + w * (motion_.angles[li] - standing_.angles[li]);
+    }
+    motion_.base_rotation = glm::slerp(standing_.base_rotation, motion_.base_rotation, w);
+  }
+  target_ = motion_;
+  stance_ = -1;
+  if (settings_.feedback && balance_) {
+    // The target's own centre of mass and ankles (forward kinematics of the motion's pose).
+    const glm::dvec3 previous = reference_com_;
+    referenceKinematics();
+    reference_velocity_ = have_reference_ ? (reference_com_ - previous) / world.dt()
+                                          : world.linearMomentum() / world.totalMass();
+    have_reference_ = true;
+  }
+  if (settings_.feedback && balance_) applyFeedback(world);
+  world.setServoTargets(target_);
+}
+
+void TrackingController::referenceKinematics() {
+  const BodyPlan& plan = *plan_;
+  const size_t n = plan.links.size();
+  const std::vector<glm::dquat> rotations = linkWorldRotations(plan, motion_);
+  std::vector<glm::dvec3> origins(n, motion_.base_position);
+  glm::dvec3 com(0.0);
+  for (size_t li = 0; li < n; ++li) {
+    const Link& link = plan.links[li];
+    if (li > 0) {
+      const size_t parent = static_cast<size_t>(link.parent);
+      origins[li] = origins[parent] + rotations[parent] * link.pivot;
+    }
+    com += (origins[li] + rotations[li] * link.com) * link.mass_kg;
+  }
+  reference_com_ = com / plan.total_mass_kg;
+  reference_ankles_.resize(feet_.size());
+  for (size_t f = 0; f < feet_.size(); ++f) reference_ankles_[f] = origins[static_cast<size_t>(feet_[f])];
+}
+
+void TrackingController::applyFeedback(const World& world) {
+  const BodyPlan& plan = *plan_;
+  const std::vector<std::uint8_t>& contacts = world.linkContacts();
+  const std::vector<double>& forces = world.linkNormalForces();
+  const bool down0 = contacts[static_cast<size_t>(feet_[0])] > 0;
+  const bool down1 = contacts[static_cast<size_t>(feet_[1])] > 0;
+  if (!down0 && !down1) return;
+  // One foot down: it is the stance foot, the other swings. Both down: the one carrying more
+  // holds the torso and nothing swings.
+  int stance = down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1);
+  const bool swinging = stance >= 0;
+  if (stance < 0)
+    stance = forces[static_cast<size_t>(feet_[0])] >= forces[static_cast<size_t>(feet_[1])] ? 0 : 1;
+  stance_ = stance;
+  const int swing = 1 - stance;
+
+  std::vector<glm::dmat4> transforms(plan.links.size());
+  world.linkTransforms(transforms);
+  auto rotationOf = [&](int li) {
+    return glm::normalize(glm::quat_cast(glm::dmat3(transforms[static_cast<size_t>(li)])));
+  };
+  const glm::dquat pelvis_now = rotationOf(pelvis_);
+  // The desired pelvis: the target's attitude at the present heading.
+  const std::vector<glm::dquat> target_world = linkWorldRotations(plan, motion_);
+  const glm::dquat pelvis_target = target_world[static_cast<size_t>(pelvis_)];
+  const glm::dquat pelvis_wanted = glm::normalize(
+      yaw(headingOf(pelvis_now, forward_local_)) *
+      glm::inverse(yaw(headingOf(pelvis_target, forward_local_))) * pelvis_target);
+
+  // Stance hip: hold the pelvis.
+  const BalanceGains& gains = settings_.balance;
+  const size_t stance_hip = static_cast<size_t>(hips_[static_cast<size_t>(stance)]);
+  const Link& stance_link = plan.links[stance_hip];
+  const glm::dquat held =
+      coordinateFor(stance_link, pelvis_wanted, rotationOf(static_cast<int>(stance_hip)));
+  glm::dquat blended = glm::slerp(target_.rotations[stance_hip], held, gains.torso);
+  target_.rotations[stance_hip] = glm::normalize(blended);
+
+  if (!swinging) return;
+  // Swing hip: its target relative to the desired pelvis, turned so the foot lands where it
+  // catches the centre of mass: by how far the centre of mass's offset from the stance foot and
+  // its velocity differ from the target motion's own at this moment (the target already swings
+  // the leg for its nominal gait).
+  const double heading_now = headingOf(pelvis_now, forward_local_);
+  const double heading_target = headingOf(pelvis_target, forward_local_);
+  const glm::dvec3 com = world.centreOfMass();
+  const glm::dvec3 velocity = world.linearMomentum() / world.totalMass();
+  const glm::dvec3 ankle(transforms[static_cast<size_t>(feet_[static_cast<size_t>(stance)])][3]);
+  // In each one's own heading frame: x to the side (left), z forward.
+  const glm::dvec3 d = glm::inverse(yaw(heading_now)) * (com - ankle);
+  const glm::dvec3 v = glm::inverse(yaw(heading_now)) * velocity;
+  const glm::dvec3 d_ref =
+      glm::inverse(yaw(heading_target)) * (reference_com_ - reference_ankles_[static_cast<size_t>(stance)]);
+  const glm::dvec3 v_ref = glm::inverse(yaw(heading_target)) * reference_velocity_;
+  const double sagittal =
+      gains.cd_sagittal * (d.z - d_ref.z) + gains.cv_sagittal * (v.z - v_ref.z);
+  const double coronal = gains.cd_coronal * (d.x - d_ref.x) + gains.cv_coronal * (v.x - v_ref.x);
+  const glm::dvec3 forward = yaw(heading_now) * glm::dvec3(0.0, 0.0, 1.0);
+  const glm::dvec3 side = glm::cross(kUp, forward);  // the character's left
+  // Turning the leg about -side by a positive angle moves the foot forward; about +forward, to
+  // the left.
+  const glm::dquat correction = glm::normalize(glm::angleAxis(sagittal, -side) *
+                                               glm::angleAxis(coronal, forward));
+  const size_t swing_hip = static_cast<size_t>(hips_[static_cast<size_t>(swing)]);
+  const Link& swing_link = plan.links[swing_hip];
+  const glm::dquat thigh_wanted = correction * pelvis_wanted *
+                                  linkRelativeRotation(swing_link, target_.rotations[swing_hip], 0.0);
+  target_.rotations[swing_hip] = coordinateFor(swing_link, pelvis_now, thigh_wanted);
+}
+
+}  // namespace sinew::physics
