@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   sinew::app::addConvertCommand(app, exit_code);
   sinew::app::addAnalyzeCommand(app, exit_code);
   sinew::app::addStyleCommand(app, exit_code);
+  sinew::app::addSimulateCommand(app, exit_code);
   sinew::app::addEditCommand(app, exit_code);
   try {
     if (argc == 1) {

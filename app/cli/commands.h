@@ -31,6 +31,7 @@ void addInfoCommand(CLI::App& app, int& exit_code);
 void addConvertCommand(CLI::App& app, int& exit_code);
 void addAnalyzeCommand(CLI::App& app, int& exit_code);
 void addStyleCommand(CLI::App& app, int& exit_code);
+void addSimulateCommand(CLI::App& app, int& exit_code);
 void addEditCommand(CLI::App& app, int& exit_code);
 
 }  // namespace sinew::app

@@ -72,11 +72,14 @@ class FourierTargets {
 
 // SIMBICON gains: what the evolutionary search tunes besides the harmonics.
 struct BalanceGains {
-  double cd_sagittal = 0.5;  // swing-hip turn per metre of centre-of-mass offset, rad/m
-  double cv_sagittal = 0.2;  // per m/s of centre-of-mass velocity, rad/(m/s)
-  double cd_coronal = 0.5;
-  double cv_coronal = 0.2;
-  double torso = 1.0;        // share of the stance hip that holds the pelvis's attitude, 0..1
+  // Defaults: the swing terms off and the torso half held, the best of a grid on the bundled walk
+  // (docs/physics.md): the target already places the feet for its gait, and the swing terms
+  // shortened that walk at every value tried; the search tunes them per motion.
+  double cd_sagittal = 0.0;  // swing-hip turn per metre of centre-of-mass offset, rad/m
+  double cv_sagittal = 0.0;  // per m/s of centre-of-mass velocity, rad/(m/s)
+  double cd_coronal = 0.0;
+  double cv_coronal = 0.0;
+  double torso = 0.5;        // share of the stance hip that holds the pelvis's attitude, 0..1
 };
 
 struct TrackingSettings {
