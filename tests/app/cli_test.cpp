@@ -1,4 +1,6 @@
 // The sinew command line, run as a user runs it: exit codes, one-line errors, JSON that parses.
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -179,6 +181,41 @@ TEST(CliTest, InfoAndConvertWorkOnEveryRealFile) {
       EXPECT_EQ(nlohmann::json::parse(back.out)["joint_count"], parsed["joint_count"]) << extension;
     }
   }
+}
+
+// sinew simulate: the figures pipelines read, what the character did as a BVH that reads back,
+// pushes on named bodies, and one-line refusals of bad terrain and pushes.
+TEST(CliTest, SimulateReportsJsonAndWritesWhatTheCharacterDid) {
+  test::TempDir dir;
+  const auto json_path = dir / "run.json";
+  const auto bvh_path = dir / "run.bvh";
+  const test::CommandResult result =
+      test::runSinew("simulate --rig " + walk() + " --seconds 2 --push 1,0,0,-20,Chest -o " +
+                     test::quote(bvh_path) + " --json " + test::quote(json_path));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("28 degrees of freedom"), std::string::npos) << result.out;
+  const nlohmann::json json = nlohmann::json::parse(test::readText(json_path));
+  for (const char* key : {"fell", "fall_time_s", "distance_m", "track_err_rad_rms", "energy_j"})
+    EXPECT_TRUE(json.contains(key)) << key;
+  EXPECT_GT(json["distance_m"].get<double>(), 0.5);  // it starts walking at 1.3 m/s
+  EXPECT_GT(json["energy_j"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(json["pushed_impulse_ns"][2].get<double>(), -20.0);
+  EXPECT_EQ(json["feet"].size(), 2u);
+  const nlohmann::json info =
+      nlohmann::json::parse(test::runSinew("info --json " + test::quote(bvh_path)).out);
+  EXPECT_EQ(info["joint_count"], 22);
+  const double seconds = json["seconds"].get<double>();
+  EXPECT_EQ(info["frames"].get<int>(), static_cast<int>(std::lround(seconds * 30.0)) + 1);
+
+  const test::CommandResult terrain = test::runSinew("simulate --rig " + walk() + " --terrain hills:3");
+  EXPECT_NE(terrain.exit_code, 0);
+  EXPECT_NE(terrain.err.find("unknown kind 'hills'"), std::string::npos) << terrain.err;
+  const test::CommandResult push = test::runSinew("simulate --rig " + walk() + " --push 1,0,0,5,Tail");
+  EXPECT_NE(push.exit_code, 0);
+  EXPECT_NE(push.err.find("no link named \"Tail\""), std::string::npos) << push.err;
+  const test::CommandResult slope = test::runSinew("simulate --rig " + walk() + " --terrain slope:80");
+  EXPECT_NE(slope.exit_code, 0);
+  EXPECT_NE(slope.err.find("slope_deg"), std::string::npos) << slope.err;
 }
 
 }  // namespace
