@@ -1,11 +1,13 @@
 // Simulation speed of the bundled biped: the full run (servo targets from the harmonic model by
 // recurrence, balance feedback, recording at 30 fps, tracking error and energy every step) against
-// bare Bullet stepping the same bodies with the same servos held at one pose, in the same process;
-// and the throughput of independent runs on 1 and 2 threads (how the search evaluates).
+// bare Bullet stepping the same bodies through the same motion (the servo targets of that run,
+// computed beforehand and replayed: the same contacts, the same solver work), in the same
+// process; and the throughput of independent runs on 1 and 2 threads (how the search evaluates).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <cstdlib>
 #include <memory>
 
 #include "ratio_reporter.h"
@@ -25,27 +27,65 @@ struct Data {
   motion::MotionAsset asset;
   physics::BodyPlan plan;
   spectral::TargetMotion target;
+  std::vector<physics::LinkPose> targets;  // the servo targets of one simulated run, per step
 };
 Data& data() {
   static Data d;
   return d;
 }
 
-// Bare Bullet: a fresh world of the same bodies and servos, stepped with the targets held.
+physics::SimulationSettings runSettings() {
+  physics::SimulationSettings settings;
+  settings.seconds = kSeconds;
+  settings.stop_at_fall = false;
+  return settings;
+}
+
+std::unique_ptr<physics::World> startWorld(const Data& d) {
+  const physics::MotionState start = physics::targetState(d.plan, d.asset.skeleton, d.target, 0.0);
+  auto world = physics::World::create(d.plan, start.pose, runSettings().world).value();
+  if (!world->setVelocities(start.base_linear, start.base_angular, start.joint_velocities).ok())
+    std::abort();
+  return world;
+}
+
+// The servo targets the controller gives over one run, as simulate starts it.
+std::vector<physics::LinkPose> controllerTargets(const Data& d) {
+  auto world = startWorld(d);
+  const physics::MotionState start = physics::targetState(d.plan, d.asset.skeleton, d.target, 0.0);
+  physics::TrackingSettings tracking = runSettings().tracking;
+  tracking.ramp_s = 0.0;
+  auto controller = physics::TrackingController::create(*world, d.asset.skeleton, d.target,
+                                                        physics::standingPose(d.plan, d.asset.skeleton),
+                                                        tracking)
+                        .value();
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  std::vector<physics::LinkPose> targets;
+  const long long n = std::llround(kSeconds / world->dt());
+  for (long long s = 0; s < n; ++s) {
+    controller->update(*world);
+    targets.push_back(controller->target());
+    world->step(zero);
+  }
+  return targets;
+}
+
+// Bare Bullet: a fresh world of the same bodies and servos, stepped through the same targets.
 void bareBullet(benchmark::State& state) {
   const Data& d = data();
-  const physics::MotionState start = physics::targetState(d.plan, d.asset.skeleton, d.target, 0.0);
   const physics::TrackingSettings defaults;
   const std::vector<double> limits = physics::jointTorqueLimits(
       d.plan, defaults.support_torque_scale, defaults.limb_torque_scale, defaults.gravity_m_s2);
   long long steps = 0;
   for (auto _ : state) {
-    auto world = physics::World::create(d.plan, start.pose).value();
+    auto world = startWorld(d);
     if (!world->enableServos(limits, defaults.servo_rate).ok()) state.SkipWithError("servos");
     std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
-    const long long n = std::llround(kSeconds / world->dt());
-    for (long long s = 0; s < n; ++s) world->step(zero);
-    steps += n;
+    for (const physics::LinkPose& target : d.targets) {
+      world->setServoTargets(target);
+      world->step(zero);
+    }
+    steps += static_cast<long long>(d.targets.size());
     benchmark::DoNotOptimize(world->centreOfMass());
   }
   state.SetItemsProcessed(steps);
@@ -54,9 +94,7 @@ void bareBullet(benchmark::State& state) {
 // Ours: physics::simulate for the same second (world built, controller, feedback, recording).
 void simulateRun(benchmark::State& state) {
   const Data& d = data();
-  physics::SimulationSettings settings;
-  settings.seconds = kSeconds;
-  settings.stop_at_fall = false;
+  const physics::SimulationSettings settings = runSettings();
   long long steps = 0;
   for (auto _ : state) {
     auto report = physics::simulate(d.plan, d.asset.skeleton, d.target, settings);
@@ -80,6 +118,7 @@ int main(int argc, char** argv) {
   d.asset = std::move(asset).value();
   d.plan = physics::buildBodyPlan(d.asset.skeleton, &d.asset.clips[0]).value();
   d.target = spectral::targetFromSpectrum(spectral::analyze(d.asset.skeleton, d.asset.clips[0]).value());
+  d.targets = controllerTargets(d);
   std::printf("biped: %zu links, %d degrees of freedom, 240 Hz, %.0f s simulated per iteration\n",
               d.plan.links.size(), d.plan.dofCount(), kSeconds);
 
