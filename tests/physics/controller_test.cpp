@@ -145,8 +145,10 @@ TEST(PdController, DISABLED_BipedHoldsItsFirstPoseForTenSeconds) {
 // Every rig in assets/ and the shared data builds a plan and holds its first pose for 5 s
 // without NaN or a joint speed blow-up.
 TEST(PdController, EveryRigSimulatesFiveSeconds) {
-  std::vector<std::filesystem::path> rigs = {sinew::test::sourceDir() / "assets" /
-                                             "biped_walk.bvh"};
+  std::vector<std::filesystem::path> rigs;
+  for (const char* file :
+       {"biped_walk.bvh", "quadruped_trot.bvh", "hopper_hop.bvh", "stepper_step.bvh"})
+    rigs.push_back(sinew::test::sourceDir() / "assets" / file);
   if (sinew::test::haveSharedData()) {
     for (const auto& p : sinew::test::sharedFiles("bvh", ".bvh")) rigs.push_back(p);
     for (const auto& p : sinew::test::sharedFiles("gltf", ".glb")) rigs.push_back(p);
