@@ -32,5 +32,6 @@ void addConvertCommand(CLI::App& app, int& exit_code);
 void addAnalyzeCommand(CLI::App& app, int& exit_code);
 void addStyleCommand(CLI::App& app, int& exit_code);
 void addEditCommand(CLI::App& app, int& exit_code);
+void addCreatureCommand(CLI::App& app, int& exit_code);
 
 }  // namespace sinew::app
