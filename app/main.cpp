@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   sinew::app::addStyleCommand(app, exit_code);
   sinew::app::addSimulateCommand(app, exit_code);
   sinew::app::addEditCommand(app, exit_code);
+  sinew::app::addCreatureCommand(app, exit_code);
   try {
     if (argc == 1) {
       app.parse(std::vector<std::string>{"edit"});  // no arguments: open the editor

@@ -33,5 +33,6 @@ void addAnalyzeCommand(CLI::App& app, int& exit_code);
 void addStyleCommand(CLI::App& app, int& exit_code);
 void addSimulateCommand(CLI::App& app, int& exit_code);
 void addEditCommand(CLI::App& app, int& exit_code);
+void addCreatureCommand(CLI::App& app, int& exit_code);
 
 }  // namespace sinew::app

@@ -1,5 +1,7 @@
 // The sinew command line, run as a user runs it: exit codes, one-line errors, JSON that parses.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -157,6 +159,85 @@ TEST(CliTest, StyleTransfersAndMeasures) {
                                                  " --styled " + bandai("walk_tired") +
                                                  " --weight 3 -o x.bvh");
   EXPECT_NE(bad.exit_code, 0);
+}
+
+TEST(CliTest, CreatureWritesTheSameFileForTheSameSeed) {
+  test::TempDir dir;
+  const test::CommandResult made =
+      test::runSinew("creature --random --seed 7 -o " + test::quote(dir / "a.bvh"));
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  EXPECT_NE(made.out.find("wrote " + (dir / "a.bvh").string() + ": creature seed 7: "),
+            std::string::npos)
+      << made.out;
+  EXPECT_NE(made.out.find("DOF"), std::string::npos) << made.out;
+  ASSERT_EQ(test::runSinew("creature --random --seed 7 -o " + test::quote(dir / "b.bvh")).exit_code,
+            0);
+  ASSERT_EQ(test::runSinew("creature --random --seed 8 -o " + test::quote(dir / "c.bvh")).exit_code,
+            0);
+  EXPECT_EQ(test::readText(dir / "a.bvh"), test::readText(dir / "b.bvh"));
+  EXPECT_NE(test::readText(dir / "a.bvh"), test::readText(dir / "c.bvh"));
+
+  // The file reads back as a centimetre, Y-up rig whose clip has a stride.
+  const test::CommandResult info = test::runSinew("info --json " + test::quote(dir / "a.bvh"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json parsed = nlohmann::json::parse(info.out);
+  EXPECT_EQ(parsed["units"], "cm");
+  EXPECT_EQ(parsed["up_axis"], "Y");
+  EXPECT_EQ(parsed["joints"][0]["name"], "Torso");
+  const test::CommandResult analyzed = test::runSinew("analyze " + test::quote(dir / "a.bvh") +
+                                                      " --json " + test::quote(dir / "a.json"));
+  ASSERT_EQ(analyzed.exit_code, 0) << analyzed.err;
+  EXPECT_TRUE(nlohmann::json::parse(test::readText(dir / "a.json"))["stride_found"].get<bool>());
+
+  // glTF too, with the leg count asked for.
+  const test::CommandResult glb =
+      test::runSinew("creature --random --seed 7 --limbs 4 -o " + test::quote(dir / "four.glb"));
+  ASSERT_EQ(glb.exit_code, 0) << glb.err;
+  EXPECT_NE(glb.out.find(": 4 legs"), std::string::npos) << glb.out;
+  const test::CommandResult glb_info =
+      test::runSinew("info --json " + test::quote(dir / "four.glb"));
+  ASSERT_EQ(glb_info.exit_code, 0) << glb_info.err;
+  EXPECT_EQ(nlohmann::json::parse(glb_info.out)["format"], "gltf");
+}
+
+TEST(CliTest, CreatureRefusesBadArgumentsInOneLineAndKeepsTheOldFile) {
+  test::TempDir dir;
+  const auto keep = dir / "keep.bvh";
+  test::writeText(keep, "precious");
+  const auto refused = [](const std::string& arguments, const std::string& message) {
+    const test::CommandResult r = test::runSinew("creature " + arguments);
+    EXPECT_NE(r.exit_code, 0) << arguments;
+    EXPECT_EQ(r.err, "sinew: " + message + "\n") << arguments;
+  };
+  refused("--random --seed 1", "creature: -o FILE is required (.bvh, .glb or .gltf)");
+  refused("--seed 1 -o " + test::quote(keep),
+          "creature: --random is required (random creatures are the only kind so far)");
+  refused("--random -o " + test::quote(keep),
+          "creature: --seed N is required (a whole number >= 0)");
+  refused("--random --seed one -o " + test::quote(keep),
+          "--seed: expected a whole number >= 0, got 'one'");
+  refused("--random --seed 1 --limbs 0..3 -o " + test::quote(keep),
+          "--limbs: expected N or MIN..MAX with 1 <= MIN <= MAX <= 8, got '0..3'");
+  refused("--random --seed 1 --limbs 5..2 -o " + test::quote(keep),
+          "--limbs: expected N or MIN..MAX with 1 <= MIN <= MAX <= 8, got '5..2'");
+  refused("--random --seed 1 -o " + test::quote(dir / "x.fbx"),
+          (dir / "x.fbx").string() + ": unknown file type '.fbx', expected .bvh, .glb or .gltf");
+  refused("--random --seed 1 -o " + test::quote(dir / "missing" / "x.bvh"),
+          (dir / "missing" / "x.bvh").string() + ": cannot write: No such file or directory");
+  EXPECT_EQ(test::readText(keep), "precious");
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.fbx"));
+  // A write that fails at the rename (the target is a folder) leaves the folder and no temporary.
+  std::filesystem::create_directories(dir / "taken.bvh" / "inside");
+  const test::CommandResult taken =
+      test::runSinew("creature --random --seed 1 -o " + test::quote(dir / "taken.bvh"));
+  EXPECT_NE(taken.exit_code, 0);
+  EXPECT_NE(taken.err.find((dir / "taken.bvh").string()), std::string::npos) << taken.err;
+  EXPECT_EQ(std::count(taken.err.begin(), taken.err.end(), '\n'), 1) << taken.err;
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "taken.bvh" / "inside"));
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    ++entries;
+  EXPECT_EQ(entries, 2u);  // keep.bvh and taken.bvh, nothing left over
 }
 
 TEST(CliTest, InfoAndConvertWorkOnEveryRealFile) {

@@ -110,11 +110,28 @@ TEST(Servo, BipedHoldsItsStandingPoseForTenSeconds) {
   EXPECT_EQ(r.loads.max_link_force_n, 0.0);
 }
 
+// The criterion for the quadruped: it stands 10 s too.
+TEST(Servo, QuadrupedHoldsItsStandingPoseForTenSeconds) {
+  const test_util::Character dog = test_util::loadCharacter("quadruped_trot.bvh");
+  ASSERT_FALSE(dog.plan.links.empty());
+  const test_util::HoldResult r =
+      test_util::holdWithServos(dog.plan, standingPose(dog.plan, dog.asset.skeleton), 10.0);
+  std::printf("quadruped standing 10 s under servos: pelvis %.3f m, lowest %.3f m, largest joint "
+              "error (last 5 s) %.2f deg (%s), fastest joint %.3f rad/s\n",
+              r.start_height, r.min_height, r.max_joint_error * kDeg,
+              dog.plan.links[static_cast<size_t>(r.worst_link)].name.c_str(), r.max_joint_speed);
+  EXPECT_TRUE(r.finite);
+  EXPECT_LT(r.fall_time, 0.0);
+  EXPECT_GT(r.min_height, 0.95 * r.start_height);
+}
+
 // Every rig in assets/ and the shared data builds a plan and stands under the servos for 5 s
 // without NaN or a joint speed blow-up.
 TEST(Servo, EveryRigStandsFiveSecondsWithoutBlowingUp) {
-  std::vector<std::filesystem::path> rigs = {sinew::test::sourceDir() / "assets" /
-                                             "biped_walk.bvh"};
+  std::vector<std::filesystem::path> rigs;
+  for (const char* file :
+       {"biped_walk.bvh", "quadruped_trot.bvh", "hopper_hop.bvh", "stepper_step.bvh"})
+    rigs.push_back(sinew::test::sourceDir() / "assets" / file);
   if (sinew::test::haveSharedData()) {
     for (const auto& p : sinew::test::sharedFiles("bvh", ".bvh")) rigs.push_back(p);
     for (const auto& p : sinew::test::sharedFiles("gltf", ".glb")) rigs.push_back(p);
