@@ -13,6 +13,7 @@
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
 #include "sinew/spectral/analysis.h"
+#include "sinew/spectral/target_io.h"
 
 namespace sinew::app {
 namespace {
@@ -20,6 +21,7 @@ namespace {
 struct SimulateArgs {
   std::string rig;
   std::string clip;
+  std::string target_path;
   std::string animation;
   double seconds = 10.0;
   std::string terrain = "flat";
@@ -190,19 +192,29 @@ int runSimulate(const SimulateArgs& args) {
 
   Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, &clip);
   if (!plan.ok()) return fail(args.rig + ": " + plan.message());
-  spectral::AnalysisSettings analysis;
-  analysis.harmonics = args.harmonics;
-  Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, clip, analysis);
-  if (!spectrum.ok()) return fail((args.clip.empty() ? args.rig : args.clip) + ": " + spectrum.message());
-  const spectral::TargetMotion target =
-      spectral::targetFromSpectrum(spectrum.value(), {}, clip.name);
+  spectral::TargetMotion target;
+  std::string what;
+  if (!args.target_path.empty()) {
+    // Coefficients written by `sinew style -o X.json` (or any edit): tracked as they are.
+    Result<spectral::TargetMotion> loaded = spectral::loadTarget(args.target_path, skeleton);
+    if (!loaded.ok()) return fail(loaded.message());
+    target = std::move(loaded).value();
+    what = args.target_path;
+  } else {
+    spectral::AnalysisSettings analysis;
+    analysis.harmonics = args.harmonics;
+    Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, clip, analysis);
+    if (!spectrum.ok())
+      return fail((args.clip.empty() ? args.rig : args.clip) + ": " + spectrum.message());
+    target = spectral::targetFromSpectrum(spectrum.value(), {}, clip.name);
+    what = "'" + clip.name + "' (K = " + std::to_string(args.harmonics) + ")";
+  }
 
-  std::printf("%s: %zu links, %d degrees of freedom, %.1f kg; tracking '%s' (stride %.3f s, K = %d) "
-              "for %.1f s on %s terrain, balance feedback %s\n",
+  std::printf("%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
+              "%.1f s on %s terrain, balance feedback %s\n",
               args.rig.c_str(), plan.value().links.size(), plan.value().dofCount(),
-              plan.value().total_mass_kg, clip.name.c_str(), spectrum.value().period_s,
-              args.harmonics, args.seconds, physics::terrainKindName(terrain.value().kind),
-              args.no_feedback ? "off" : "on");
+              plan.value().total_mass_kg, what.c_str(), target.period(), args.seconds,
+              physics::terrainKindName(terrain.value().kind), args.no_feedback ? "off" : "on");
   Result<physics::SimulationReport> run = physics::simulate(plan.value(), skeleton, target, settings);
   if (!run.ok()) return fail(run.message());
   const physics::SimulationReport& r = run.value();
@@ -243,6 +255,9 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
   command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf)")->required();
   command->add_option("--clip", args->clip,
                       "The motion to track (same skeleton); default: the rig's own");
+  command->add_option("--target", args->target_path,
+                      "Track these harmonic coefficients (.json from sinew style) instead of the "
+                      "clip's; the clip still shapes the body (joint types and limits)");
   command->add_option("--animation", args->animation, "Which glTF animation (by name)");
   command->add_option("--seconds", args->seconds, "Simulated time, seconds")
       ->check(CLI::Range(0.001, 3600.0));
