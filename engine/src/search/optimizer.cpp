@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sinew/search/cmaes.h"
+#include "sinew/search/genetic.h"
 #include "state_json.h"
 
 namespace sinew::search {
@@ -111,7 +112,12 @@ Result<std::unique_ptr<Optimizer>> Optimizer::load(const json& state) {
     if (!cmaes.ok()) return cmaes.status();
     return std::unique_ptr<Optimizer>(std::move(cmaes).value());
   }
-  return Status::error(where + ": kind: expected \"cmaes\", found \"" + kind + "\"");
+  if (kind == "genetic") {
+    Result<std::unique_ptr<Genetic>> genetic = Genetic::load(state);
+    if (!genetic.ok()) return genetic.status();
+    return std::unique_ptr<Optimizer>(std::move(genetic).value());
+  }
+  return Status::error(where + ": kind: expected \"cmaes\" or \"genetic\", found \"" + kind + "\"");
 }
 
 }  // namespace sinew::search
