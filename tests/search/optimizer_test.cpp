@@ -1,0 +1,603 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "sinew/search/cmaes.h"
+#include "sinew/search/genetic.h"
+#include "sinew/search/optimizer.h"
+#include "sinew/search/random.h"
+
+namespace sinew::search {
+namespace {
+
+using nlohmann::json;
+using Point = std::vector<double>;
+using CostFunction = std::function<double(const Point&)>;
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The test functions' optimum: inside [0, 1]^n but away from the centre, 0.3 ... 0.7.
+Point shiftedOptimum(int n) {
+  Point c(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) c[static_cast<size_t>(i)] = 0.3 + 0.4 * i / std::max(n - 1, 1);
+  return c;
+}
+
+CostFunction sphere(Point centre) {
+  return [centre](const Point& x) {
+    double f = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) f += (x[i] - centre[i]) * (x[i] - centre[i]);
+    return f;
+  };
+}
+
+// Axis-parallel ellipsoid, condition 1e6: scales 10^(6 i / (n - 1)) on the squares.
+CostFunction ellipsoid(Point centre) {
+  return [centre](const Point& x) {
+    const double n = static_cast<double>(x.size());
+    double f = 0.0;
+    for (size_t i = 0; i < x.size(); ++i)
+      f += std::pow(1e6, static_cast<double>(i) / (n - 1.0)) * (x[i] - centre[i]) *
+           (x[i] - centre[i]);
+    return f;
+  };
+}
+
+// Rosenbrock on z = 4x - 2 in [-2, 2]: optimum z = 1, x = 0.75.
+double rosenbrock(const Point& x) {
+  double f = 0.0;
+  for (size_t i = 0; i + 1 < x.size(); ++i) {
+    const double z = 4.0 * x[i] - 2.0, next = 4.0 * x[i + 1] - 2.0;
+    f += 100.0 * (next - z * z) * (next - z * z) + (1.0 - z) * (1.0 - z);
+  }
+  return f;
+}
+
+// Rastrigin on u = 10.24 (x - centre): many local minima, the global one at the centre.
+CostFunction rastrigin(Point centre) {
+  return [centre](const Point& x) {
+    double f = 10.0 * static_cast<double>(x.size());
+    for (size_t i = 0; i < x.size(); ++i) {
+      const double u = 10.24 * (x[i] - centre[i]);
+      f += u * u - 10.0 * std::cos(2.0 * std::numbers::pi * u);
+    }
+    return f;
+  };
+}
+
+bool insideUnitCube(const std::vector<Point>& points) {
+  for (const Point& p : points)
+    for (double x : p)
+      if (!(x >= 0.0 && x <= 1.0)) return false;
+  return true;
+}
+
+// One generation: evaluate ask(), tell the costs. Returns the costs.
+std::vector<double> step(Optimizer& optimizer, const CostFunction& f) {
+  std::vector<double> costs;
+  for (const Point& p : optimizer.ask()) costs.push_back(f(p));
+  EXPECT_TRUE(optimizer.tell(costs).ok());
+  return costs;
+}
+
+// Generations until the best cost reaches `target` or the budget is spent.
+void runUntil(Optimizer& optimizer, const CostFunction& f, double target, long long budget) {
+  while (optimizer.bestCost() > target && optimizer.evaluations() < budget) {
+    ASSERT_TRUE(insideUnitCube(optimizer.ask()));
+    step(optimizer, f);
+  }
+}
+
+std::unique_ptr<Cmaes> cmaes(int n, CmaesSettings settings = {}) {
+  Result<std::unique_ptr<Cmaes>> c = Cmaes::create(n, settings);
+  EXPECT_TRUE(c.ok()) << c.message();
+  return std::move(c).value();
+}
+
+std::unique_ptr<Genetic> genetic(int n, GeneticSettings settings = {}) {
+  Result<std::unique_ptr<Genetic>> g = Genetic::create(n, settings);
+  EXPECT_TRUE(g.ok()) << g.message();
+  return std::move(g).value();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Refusals
+
+TEST(SearchSettings, InvalidSettingsAreRefusedNamingTheField) {
+  auto cmaesRefused = [](int n, const CmaesSettings& s, const std::string& field) {
+    Result<std::unique_ptr<Cmaes>> c = Cmaes::create(n, s);
+    EXPECT_FALSE(c.ok()) << field;
+    EXPECT_NE(c.message().find(field), std::string::npos) << c.message();
+  };
+  CmaesSettings c;
+  cmaesRefused(0, c, "dimension");
+  c.population = 1;
+  cmaesRefused(4, c, "population");
+  c = {};
+  c.initial_sigma = 0.0;
+  cmaesRefused(4, c, "initial_sigma");
+  c.initial_sigma = kNan;
+  cmaesRefused(4, c, "initial_sigma");
+  c = {};
+  c.initial_mean = {0.5, 0.5, 0.5};
+  cmaesRefused(4, c, "initial_mean");
+  c.initial_mean = {0.5, 0.5, 1.5, 0.5};
+  cmaesRefused(4, c, "initial_mean[2]");
+  c = {};
+  c.max_restarts = -1;
+  cmaesRefused(4, c, "max_restarts");
+  c = {};
+  c.tol_x = -1.0;
+  cmaesRefused(4, c, "tol_x");
+  c = {};
+  c.tol_fun = kInf;
+  cmaesRefused(4, c, "tol_fun");
+  EXPECT_TRUE(Cmaes::create(1).ok());
+
+  auto geneticRefused = [](int n, const GeneticSettings& s, const std::string& field) {
+    Result<std::unique_ptr<Genetic>> g = Genetic::create(n, s);
+    EXPECT_FALSE(g.ok()) << field;
+    EXPECT_NE(g.message().find(field), std::string::npos) << g.message();
+  };
+  GeneticSettings g;
+  geneticRefused(0, g, "dimension");
+  g.population = 1;
+  geneticRefused(4, g, "population");
+  g = {};
+  g.elites = g.population;
+  geneticRefused(4, g, "elites");
+  g = {};
+  g.tournament_size = 0;
+  geneticRefused(4, g, "tournament_size");
+  g.tournament_size = g.population + 1;
+  geneticRefused(4, g, "tournament_size");
+  g = {};
+  g.crossover_rate = 1.5;
+  geneticRefused(4, g, "crossover_rate");
+  g = {};
+  g.blend_alpha = -0.1;
+  geneticRefused(4, g, "blend_alpha");
+  g = {};
+  g.mutation_rate = kNan;
+  geneticRefused(4, g, "mutation_rate");
+  g = {};
+  g.mutation_scale = 0.0;
+  geneticRefused(4, g, "mutation_scale");
+  g = {};
+  g.initial_point = {0.1};
+  geneticRefused(4, g, "initial_point");
+  g.initial_point = {0.1, -0.1, 0.5, 0.5};
+  geneticRefused(4, g, "initial_point[1]");
+  g = {};
+  g.initial_spread = -1.0;
+  geneticRefused(4, g, "initial_spread");
+}
+
+TEST(SearchOptimizer, TellRefusesTheWrongNumberOfCosts) {
+  std::unique_ptr<Cmaes> c = cmaes(5);
+  const Point before = c->ask()[0];
+  Status s = c->tell(std::vector<double>(static_cast<size_t>(c->population()) - 1, 1.0));
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("costs"), std::string::npos) << s.message();
+  EXPECT_EQ(c->generation(), 0);
+  EXPECT_EQ(c->ask()[0], before);  // nothing changed
+  EXPECT_EQ(c->ask(), c->ask());   // ask() draws nothing
+}
+
+// ---------------------------------------------------------------------------------------------
+// Building blocks
+
+TEST(SearchRandom, SameSeedSameNumbersAndStateRoundTrips) {
+  Random a(42), b(42), other(43);
+  for (int i = 0; i < 1000; ++i) {
+    EXPECT_EQ(a.uniform(), b.uniform());
+    EXPECT_EQ(a.normal(), b.normal());
+  }
+  EXPECT_NE(Random(42).uniform(), other.uniform());
+
+  // Moments of the normals and the range of below().
+  Random r(7);
+  double sum = 0.0, sum_sq = 0.0;
+  const int count = 200000;
+  for (int i = 0; i < count; ++i) {
+    const double z = r.normal();
+    sum += z;
+    sum_sq += z * z;
+  }
+  EXPECT_NEAR(sum / count, 0.0, 0.01);
+  EXPECT_NEAR(sum_sq / count, 1.0, 0.01);
+  std::vector<int> hits(7, 0);
+  for (int i = 0; i < 7000; ++i) {
+    const int k = r.below(7);
+    ASSERT_GE(k, 0);
+    ASSERT_LT(k, 7);
+    ++hits[static_cast<size_t>(k)];
+  }
+  for (int h : hits) EXPECT_NEAR(h, 1000, 150);
+
+  // Saved in the middle of a Box-Muller pair: the cached half comes back too.
+  r.normal();
+  const json saved = r.saveState();
+  EXPECT_FALSE(saved["cached_normal"].is_null());
+  Result<Random> loaded = Random::load(json::parse(saved.dump()), "rng");
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  Random copy = loaded.value();
+  EXPECT_TRUE(copy == r);
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(copy.normal(), r.normal());
+
+  json broken = saved;
+  broken["engine"] = "1 2 3";
+  Result<Random> refused = Random::load(broken, "rng");
+  EXPECT_FALSE(refused.ok());
+  EXPECT_NE(refused.message().find("rng: engine"), std::string::npos) << refused.message();
+}
+
+TEST(SearchOptimizer, FailedCostsRankLast) {
+  const std::vector<double> costs = {3.0, kNan, 1.0, kInf, -kInf, 2.0, 1.0};
+  EXPECT_EQ(rankOrder(costs), (std::vector<int>{2, 6, 5, 0, 1, 3, 4}));
+}
+
+TEST(SearchBounds, TransformIsIdentityInsideAndStaysInTheUnitInterval) {
+  const double a = kBoundaryZone;
+  for (double x = a; x <= 1.0 - a; x += 0.01) EXPECT_EQ(boundaryTransform(x), x);
+  double previous = boundaryTransform(-10.0);
+  for (double y = -10.0; y <= 10.0; y += 1e-4) {
+    const double x = boundaryTransform(y);
+    ASSERT_GE(x, 0.0) << y;
+    ASSERT_LE(x, 1.0) << y;
+    ASSERT_LT(std::abs(x - previous), 1.01e-4) << y;  // continuous, slope at most 1
+    previous = x;
+  }
+  EXPECT_EQ(boundaryTransform(1.0 + a), 1.0);  // the bounds are reached
+  EXPECT_EQ(boundaryTransform(-a), 0.0);
+  EXPECT_NEAR(boundaryTransform(0.3 + 2.0 * (1.0 + 2.0 * a)), 0.3, 1e-12);  // periodic
+  EXPECT_NEAR(boundaryTransform(1.2), boundaryTransform(0.9), 1e-12);       // mirrored at 1 + a
+  for (double x = 0.0; x <= 1.0; x += 0.001)
+    EXPECT_NEAR(boundaryTransform(inverseBoundaryTransform(x)), x, 1e-12) << x;
+}
+
+// ---------------------------------------------------------------------------------------------
+// CMA-ES convergence
+
+TEST(SearchCmaes, SolvesSphereAndEllipsoidIn10D) {
+  const int n = 10;
+  const Point centre = shiftedOptimum(n);
+  std::unique_ptr<Cmaes> on_sphere = cmaes(n);
+  runUntil(*on_sphere, sphere(centre), 1e-8, 20000);
+  std::printf("  sphere 10-D: %.2e after %d generations, %lld evaluations (lambda %d)\n",
+              on_sphere->bestCost(), on_sphere->generation(), on_sphere->evaluations(),
+              on_sphere->population());
+  EXPECT_LE(on_sphere->bestCost(), 1e-8);
+  EXPECT_LT(on_sphere->evaluations(), 3000);  // Hansen: about 1,500 from this distance
+
+  std::unique_ptr<Cmaes> on_ellipsoid = cmaes(n);
+  runUntil(*on_ellipsoid, ellipsoid(centre), 1e-8, 50000);
+  std::printf(
+      "  ellipsoid 10-D (condition 1e6): %.2e after %d generations, %lld evaluations, "
+      "axis ratio %.0f (sqrt of 1e6: 1000)\n",
+      on_ellipsoid->bestCost(), on_ellipsoid->generation(), on_ellipsoid->evaluations(),
+      on_ellipsoid->axisRatio());
+  EXPECT_LE(on_ellipsoid->bestCost(), 1e-8);
+  EXPECT_LT(on_ellipsoid->evaluations(), 10000);
+  // The covariance learnt the scaling: its axis ratio is about sqrt(condition).
+  EXPECT_GT(on_ellipsoid->axisRatio(), 300.0);
+  EXPECT_LT(on_ellipsoid->axisRatio(), 3000.0);
+  for (size_t i = 0; i < centre.size(); ++i)
+    EXPECT_NEAR(on_ellipsoid->best()[i], centre[i], 1e-4) << i;
+}
+
+TEST(SearchCmaes, SolvesRosenbrockIn10D) {
+  std::unique_ptr<Cmaes> c = cmaes(10);
+  runUntil(*c, rosenbrock, 1e-8, 20000);
+  std::printf("  Rosenbrock 10-D: %.2e after %d generations, %lld evaluations\n", c->bestCost(),
+              c->generation(), c->evaluations());
+  EXPECT_LE(c->bestCost(), 1e-8);
+  for (double x : c->best()) EXPECT_NEAR(x, 0.75, 1e-4);
+}
+
+TEST(SearchCmaes, DiagonalVariantSolvesTheSeparableEllipsoidIn30DFaster) {
+  const int n = 30;
+  const CostFunction f = ellipsoid(shiftedOptimum(n));
+  CmaesSettings settings;
+  settings.diagonal = true;
+  std::unique_ptr<Cmaes> diagonal = cmaes(n, settings);
+  runUntil(*diagonal, f, 1e-8, 400000);
+  std::unique_ptr<Cmaes> full = cmaes(n);
+  runUntil(*full, f, 1e-8, 400000);
+  std::printf("  separable ellipsoid 30-D to 1e-8: diagonal %lld evaluations, full %lld (%.1fx)\n",
+              diagonal->evaluations(), full->evaluations(),
+              static_cast<double>(full->evaluations()) / diagonal->evaluations());
+  EXPECT_LE(diagonal->bestCost(), 1e-8);
+  EXPECT_LE(full->bestCost(), 1e-8);
+  // Ros & Hansen (2008): on separable functions the diagonal learning rates pay off several times.
+  EXPECT_LT(diagonal->evaluations() * 3, full->evaluations());
+}
+
+TEST(SearchCmaes, OptimumOutsideTheBoxIsReachedOnItsBoundary) {
+  const int n = 10;
+  Point centre(static_cast<size_t>(n));
+  for (size_t i = 0; i < centre.size(); ++i) centre[i] = i % 2 == 0 ? 1.3 : -0.3;
+  for (bool diagonal : {false, true}) {
+    CmaesSettings settings;
+    settings.diagonal = diagonal;
+    std::unique_ptr<Cmaes> c = cmaes(n, settings);
+    const CostFunction f = sphere(centre);
+    double worst = 1.0;
+    while (c->generation() < 1000 && worst > 1e-6) {
+      ASSERT_TRUE(insideUnitCube(c->ask())) << "generation " << c->generation();
+      step(*c, f);
+      worst = 0.0;
+      for (size_t i = 0; i < centre.size(); ++i)
+        worst = std::max(worst, std::abs(c->best()[i] - (centre[i] > 1.0 ? 1.0 : 0.0)));
+    }
+    std::printf("  %s: every coordinate within %.1e of its bound after %d generations\n",
+                diagonal ? "diagonal" : "full", worst, c->generation());
+    EXPECT_LE(worst, 1e-6);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Determinism and checkpoints
+
+using Factory = std::function<std::unique_ptr<Optimizer>(std::uint64_t seed)>;
+
+void expectDeterministic(const Factory& make, const CostFunction& f, const char* name) {
+  std::unique_ptr<Optimizer> a = make(11), b = make(11), other = make(12);
+  EXPECT_NE(a->ask(), other->ask()) << name << ": another seed, another sample";
+  for (int g = 0; g < 25; ++g) EXPECT_EQ(step(*a, f), step(*b, f)) << name << " generation " << g;
+  EXPECT_EQ(a->best(), b->best()) << name;
+  EXPECT_EQ(a->bestCost(), b->bestCost()) << name;
+  EXPECT_EQ(a->ask(), b->ask()) << name;
+}
+
+void expectCheckpointIsSeamless(const Factory& make, const CostFunction& f, const char* name) {
+  std::unique_ptr<Optimizer> straight = make(5);
+  for (int g = 0; g < 30; ++g) step(*straight, f);
+
+  std::unique_ptr<Optimizer> first = make(5);
+  for (int g = 0; g < 12; ++g) step(*first, f);
+  const std::string text = first->saveState().dump();
+  first.reset();
+  Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(json::parse(text));
+  ASSERT_TRUE(loaded.ok()) << name << ": " << loaded.message();
+  std::unique_ptr<Optimizer> resumed = std::move(loaded).value();
+  EXPECT_STREQ(resumed->kind(), straight->kind());
+  EXPECT_EQ(resumed->generation(), 12);
+  for (int g = 0; g < 18; ++g) step(*resumed, f);
+
+  EXPECT_EQ(resumed->generation(), straight->generation()) << name;
+  EXPECT_EQ(resumed->evaluations(), straight->evaluations()) << name;
+  EXPECT_EQ(resumed->best(), straight->best()) << name;
+  EXPECT_EQ(resumed->bestCost(), straight->bestCost()) << name;
+  EXPECT_EQ(resumed->ask(), straight->ask()) << name;
+  // Everything else too: the whole states are the same text.
+  EXPECT_EQ(resumed->saveState().dump(), straight->saveState().dump()) << name;
+}
+
+Factory cmaesFactory(int n, CmaesSettings settings) {
+  return [n, settings](std::uint64_t seed) -> std::unique_ptr<Optimizer> {
+    CmaesSettings s = settings;
+    s.seed = seed;
+    return cmaes(n, s);
+  };
+}
+
+Factory geneticFactory(int n, GeneticSettings settings) {
+  return [n, settings](std::uint64_t seed) -> std::unique_ptr<Optimizer> {
+    GeneticSettings s = settings;
+    s.seed = seed;
+    return genetic(n, s);
+  };
+}
+
+TEST(SearchCheckpoint, SameSeedSameRunDifferentSeedDifferentSample) {
+  const int n = 8;
+  const CostFunction f = rastrigin(shiftedOptimum(n));
+  expectDeterministic(cmaesFactory(n, {}), f, "cmaes");
+  CmaesSettings diagonal;
+  diagonal.diagonal = true;
+  expectDeterministic(cmaesFactory(n, diagonal), f, "sep-cmaes");
+  expectDeterministic(geneticFactory(n, {}), f, "genetic");
+}
+
+TEST(SearchCheckpoint, LoadAndContinueEqualsTheUninterruptedRun) {
+  const int n = 8;
+  const CostFunction f = rastrigin(shiftedOptimum(n));
+  expectCheckpointIsSeamless(cmaesFactory(n, {}), f, "cmaes");
+  CmaesSettings diagonal;
+  diagonal.diagonal = true;
+  expectCheckpointIsSeamless(cmaesFactory(n, diagonal), f, "sep-cmaes");
+  GeneticSettings blend;
+  blend.crossover = Crossover::kBlend;
+  expectCheckpointIsSeamless(geneticFactory(n, {}), f, "genetic");
+  expectCheckpointIsSeamless(geneticFactory(n, blend), f, "genetic blend");
+}
+
+TEST(SearchCheckpoint, RestartsDoubleThePopulationAndSurviveACheckpoint) {
+  const int n = 6;
+  CmaesSettings ipop;
+  ipop.max_restarts = 4;
+  ipop.tol_x = 0.2;  // coarse, so that restarts happen within a few generations
+  const CostFunction f = sphere(shiftedOptimum(n));
+  std::unique_ptr<Cmaes> c = cmaes(n, ipop);
+  const int lambda = c->population();
+  std::vector<int> populations;
+  for (int g = 0; g < 30; ++g) {
+    step(*c, f);
+    if (c->population() != (populations.empty() ? lambda : populations.back()))
+      std::printf("  IPOP: restart after generation %d\n", g + 1);
+    populations.push_back(c->population());
+  }
+  std::printf("  IPOP: %d restarts in 30 generations, population %d -> %d\n", c->restarts(), lambda,
+              c->population());
+  ASSERT_GE(c->restarts(), 2);
+  EXPECT_EQ(c->population(), lambda << c->restarts());
+  EXPECT_TRUE(std::is_sorted(populations.begin(), populations.end()));
+  expectCheckpointIsSeamless(cmaesFactory(n, ipop), f, "ipop");
+}
+
+TEST(SearchCheckpoint, CorruptedStatesAreRefusedNamingTheField) {
+  const int n = 4;
+  const CostFunction f = sphere(shiftedOptimum(n));
+  std::unique_ptr<Cmaes> c = cmaes(n);
+  std::unique_ptr<Genetic> g = genetic(n);
+  for (int k = 0; k < 3; ++k) {
+    step(*c, f);
+    step(*g, f);
+  }
+  const json cmaes_state = c->saveState();
+  const json genetic_state = g->saveState();
+  ASSERT_TRUE(Optimizer::load(cmaes_state).ok());
+  ASSERT_TRUE(Optimizer::load(genetic_state).ok());
+
+  auto refused = [](const json& state, const std::string& field) {
+    Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(state);
+    EXPECT_FALSE(loaded.ok()) << field;
+    EXPECT_NE(loaded.message().find(field), std::string::npos) << loaded.message();
+  };
+  refused(json::array(), "optimizer state");
+  json s = cmaes_state;
+  s["format"] = "sinew.target";
+  refused(s, "format");
+  s = cmaes_state;
+  s["kind"] = "annealing";
+  refused(s, "kind");
+  s = cmaes_state;
+  s.erase("mean");
+  refused(s, "mean: missing");
+  s = cmaes_state;
+  s["covariance"].erase(0);
+  refused(s, "covariance: expected 4 arrays of 4 finite numbers, found 3");
+  s = cmaes_state;
+  s["covariance"][1][2] = "x";
+  refused(s, "covariance[1]");
+  s = cmaes_state;
+  s["basis"][3].erase(0);
+  refused(s, "basis[3]");
+  s = cmaes_state;
+  s["samples"].erase(0);
+  refused(s, "samples");
+  s = cmaes_state;
+  s["sigma"] = -0.1;
+  refused(s, "sigma");
+  s = cmaes_state;
+  s["points"][0][1] = 1.5;
+  refused(s, "points");
+  s = cmaes_state;
+  s["points"].erase(0);
+  refused(s, "points");
+  s = cmaes_state;
+  s["rng"]["engine"] = "not a generator";
+  refused(s, "rng: engine");
+  s = cmaes_state;
+  s["settings"]["population"] = 1;
+  refused(s, "settings: population");
+  s = cmaes_state;
+  s["settings"].erase("seed");
+  refused(s, "settings: seed");
+  s = cmaes_state;
+  s["best_cost"] = "nan";
+  refused(s, "best_cost");
+  s = cmaes_state;
+  s["best"].erase(0);
+  refused(s, "best");
+  s = cmaes_state;
+  s["history"][0] = "a lot";
+  refused(s, "history[0]");
+
+  s = genetic_state;
+  s["points"].erase(0);
+  refused(s, "points");
+  s = genetic_state;
+  s["settings"]["crossover"] = "one-point";
+  refused(s, "settings: crossover");
+  s = genetic_state;
+  s["settings"]["elites"] = 64;
+  refused(s, "settings: elites");
+  s = genetic_state;
+  s.erase("rng");
+  refused(s, "rng: missing");
+  s = genetic_state;
+  s["dimension"] = 5;
+  refused(s, "best: expected an array of 5 finite numbers, found 4");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Genetic algorithm
+
+TEST(SearchGenetic, ElitismNeverLosesTheBestAndSphereImproves) {
+  const int n = 10;
+  const Point centre = shiftedOptimum(n);
+  for (const auto& [name, f] : std::vector<std::pair<const char*, CostFunction>>{
+           {"Rastrigin", rastrigin(centre)}, {"sphere", sphere(centre)}}) {
+    std::unique_ptr<Genetic> g = genetic(n);
+    double previous = kInf, first = kInf;
+    for (int generation = 0; generation < 100; ++generation) {
+      ASSERT_TRUE(insideUnitCube(g->ask()));
+      const std::vector<double> costs = step(*g, f);
+      const double best = *std::min_element(costs.begin(), costs.end());
+      if (generation == 0) first = best;
+      ASSERT_LE(best, previous) << name << " generation " << generation;
+      EXPECT_EQ(best, g->bestCost()) << name;  // the elite is re-evaluated, never lost
+      previous = best;
+    }
+    std::printf("  GA on %s 10-D: best %.3g -> %.3g in 100 generations (%.0fx)\n", name, first,
+                g->bestCost(), first / g->bestCost());
+    EXPECT_GT(first / g->bestCost(), name == std::string("sphere") ? 1000.0 : 20.0) << name;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Failed evaluations
+
+TEST(SearchFailures, NanAndInfiniteCostsRankLastAndBreakNothing) {
+  const int n = 6;
+  const CostFunction f = sphere(shiftedOptimum(n));
+  // Every 5th evaluation fails (NaN, +inf, -inf in turn); whole generations fail at first.
+  auto flaky = [&f](const Point& x, long long index, int generation) {
+    if (generation < 5) return kNan;
+    if (index % 5 == 0) return std::array<double, 3>{kNan, kInf, -kInf}[(index / 5) % 3];
+    return f(x);
+  };
+  CmaesSettings diagonal;
+  diagonal.diagonal = true;
+  std::vector<std::pair<const char*, std::unique_ptr<Optimizer>>> optimizers;
+  optimizers.emplace_back("cmaes", cmaes(n));
+  optimizers.emplace_back("sep-cmaes", cmaes(n, diagonal));
+  optimizers.emplace_back("genetic", genetic(n));
+  for (auto& [name, o] : optimizers) {
+    long long index = 0;
+    for (int generation = 0; generation < 400 && o->bestCost() > 1e-8; ++generation) {
+      ASSERT_TRUE(insideUnitCube(o->ask())) << name << " generation " << generation;
+      std::vector<double> costs;
+      for (const Point& p : o->ask()) costs.push_back(flaky(p, index++, generation));
+      ASSERT_TRUE(o->tell(costs).ok());
+      if (generation < 5) {
+        EXPECT_TRUE(o->best().empty()) << name;
+        EXPECT_EQ(o->bestCost(), kInf) << name;
+      }
+    }
+    std::printf("  %s with failed evaluations: best %.2e after %lld evaluations\n", name,
+                o->bestCost(), o->evaluations());
+    ASSERT_EQ(o->best().size(), static_cast<size_t>(n)) << name;
+    EXPECT_EQ(o->bestCost(), f(o->best())) << name;  // the best is a real, finite evaluation
+    const double target = std::string(name) == "genetic" ? 1e-2 : 1e-8;  // GA: no convergence
+    EXPECT_LE(o->bestCost(), target) << name;
+    // A state with failed costs in it saves and loads.
+    EXPECT_TRUE(Optimizer::load(json::parse(o->saveState().dump())).ok()) << name;
+  }
+}
+
+}  // namespace
+}  // namespace sinew::search
