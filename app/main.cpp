@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   sinew::app::addAnalyzeCommand(app, exit_code);
   sinew::app::addStyleCommand(app, exit_code);
   sinew::app::addSimulateCommand(app, exit_code);
+  sinew::app::addEvolveCommand(app, exit_code);
   sinew::app::addEditCommand(app, exit_code);
   sinew::app::addCreatureCommand(app, exit_code);
   try {

@@ -32,6 +32,7 @@ void addConvertCommand(CLI::App& app, int& exit_code);
 void addAnalyzeCommand(CLI::App& app, int& exit_code);
 void addStyleCommand(CLI::App& app, int& exit_code);
 void addSimulateCommand(CLI::App& app, int& exit_code);
+void addEvolveCommand(CLI::App& app, int& exit_code);
 void addEditCommand(CLI::App& app, int& exit_code);
 void addCreatureCommand(CLI::App& app, int& exit_code);
 

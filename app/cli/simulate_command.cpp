@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
@@ -22,6 +23,7 @@ struct SimulateArgs {
   std::string rig;
   std::string clip;
   std::string target_path;
+  std::string controller_path;
   std::string animation;
   double seconds = 10.0;
   std::string terrain = "flat";
@@ -34,85 +36,6 @@ struct SimulateArgs {
   std::string json_path;
   ImportFlags import;
 };
-
-// "slope:5", "steps:0.05,0.6", "rough:0.02,7", "flat".
-Result<physics::TerrainSettings> parseTerrain(const std::string& text) {
-  physics::TerrainSettings t;
-  const size_t colon = text.find(':');
-  const std::string kind = text.substr(0, colon);
-  std::vector<double> values;
-  if (colon != std::string::npos) {
-    std::stringstream in(text.substr(colon + 1));
-    std::string item;
-    while (std::getline(in, item, ',')) {
-      try {
-        size_t used = 0;
-        values.push_back(std::stod(item, &used));
-        if (used != item.size()) throw std::invalid_argument(item);
-      } catch (const std::exception&) {
-        return Status::error("--terrain: '" + item + "' is not a number (in '" + text + "')");
-      }
-    }
-  }
-  auto want = [&](size_t most) -> Status {
-    if (values.size() > most)
-      return Status::error("--terrain " + kind + ": at most " + std::to_string(most) +
-                           " values, got " + std::to_string(values.size()));
-    return Status();
-  };
-  using Kind = physics::TerrainSettings::Kind;
-  if (kind == "flat") {
-    if (Status s = want(0); !s.ok()) return s;
-  } else if (kind == "slope") {
-    if (Status s = want(1); !s.ok()) return s;
-    t.kind = Kind::kSlope;
-    if (!values.empty()) t.slope_deg = values[0];
-  } else if (kind == "steps") {
-    if (Status s = want(2); !s.ok()) return s;
-    t.kind = Kind::kSteps;
-    if (values.size() > 0) t.step_height_m = values[0];
-    if (values.size() > 1) t.step_depth_m = values[1];
-  } else if (kind == "rough") {
-    if (Status s = want(2); !s.ok()) return s;
-    t.kind = Kind::kRough;
-    if (values.size() > 0) t.amplitude_m = values[0];
-    if (values.size() > 1) {
-      if (values[1] < 0.0 || values[1] != static_cast<double>(static_cast<std::uint64_t>(values[1])))
-        return Status::error("--terrain rough: the seed must be a whole number >= 0");
-      t.seed = static_cast<std::uint64_t>(values[1]);
-    }
-  } else {
-    return Status::error("--terrain: unknown kind '" + kind +
-                         "' (flat, slope:DEG, steps:HEIGHT,DEPTH, rough:AMPLITUDE,SEED)");
-  }
-  if (Status s = t.validate(); !s.ok()) return Status::error("--terrain: " + s.message());
-  return t;
-}
-
-// "TIME,X,Y,Z[,LINK]": seconds, N s (world, Y up), and a joint name (the base when left out).
-Result<physics::Push> parsePush(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) parts.push_back(item);
-  if (parts.size() != 4 && parts.size() != 5)
-    return Status::error("--push '" + text + "': expected TIME,X,Y,Z[,LINK] (seconds, N s)");
-  double v[4];
-  for (size_t i = 0; i < 4; ++i) {
-    try {
-      size_t used = 0;
-      v[i] = std::stod(parts[i], &used);
-      if (used != parts[i].size()) throw std::invalid_argument(parts[i]);
-    } catch (const std::exception&) {
-      return Status::error("--push '" + text + "': '" + parts[i] + "' is not a number");
-    }
-  }
-  physics::Push push;
-  push.time_s = v[0];
-  push.impulse_ns = glm::dvec3(v[1], v[2], v[3]);
-  if (parts.size() == 5) push.link = parts[4];
-  return push;
-}
 
 nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs& args) {
   nlohmann::json feet = nlohmann::json::array();
@@ -144,27 +67,13 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
 }
 
 int runSimulate(const SimulateArgs& args) {
-  Result<motion::ImportOptions> options = args.import.options();
-  if (!options.ok()) return fail(options.message());
-  Result<motion::MotionAsset> rig = motion::importMotion(args.rig, options.value());
-  if (!rig.ok()) return fail(rig.message());
-  motion::MotionAsset motion_source;
-  const motion::MotionAsset* source = &rig.value();
-  if (!args.clip.empty()) {
-    Result<motion::MotionAsset> clip_asset = motion::importMotion(args.clip, options.value());
-    if (!clip_asset.ok()) return fail(clip_asset.message());
-    motion_source = std::move(clip_asset).value();
-    if (motion_source.skeleton.names != rig.value().skeleton.names)
-      return fail(args.clip + ": its skeleton is not the rig's (" + args.rig +
-                  "): the joints differ in names or order");
-    source = &motion_source;
-  }
-  if (source->clips.empty())
-    return fail((args.clip.empty() ? args.rig : args.clip) + ": no motion to track (give --clip)");
-  Result<int> clip_index = selectClip(*source, args.animation);
-  if (!clip_index.ok()) return fail(clip_index.message());
-  const motion::Clip& clip = source->clips[static_cast<size_t>(clip_index.value())];
-  const motion::Skeleton& skeleton = rig.value().skeleton;
+  if (!args.controller_path.empty() && !args.target_path.empty())
+    return fail("--controller and --target both give the coefficients: choose one");
+  Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
+                                              args.harmonics, args.import);
+  if (!loaded.ok()) return fail(loaded.message());
+  LoadedRig& rig = loaded.value();
+  const motion::Skeleton& skeleton = rig.asset.skeleton;
 
   Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
   if (!terrain.ok()) return fail(terrain.message());
@@ -172,6 +81,14 @@ int runSimulate(const SimulateArgs& args) {
   settings.seconds = args.seconds;
   settings.world.terrain = terrain.value();
   settings.tracking.feedback = !args.no_feedback;
+  if (!args.controller_path.empty()) {
+    // An evolved controller: its coefficients and its balance gains.
+    Result<ControllerFile> controller = loadController(args.controller_path, skeleton);
+    if (!controller.ok()) return fail(controller.message());
+    rig.target = controller.value().target;
+    rig.what = args.controller_path;
+    settings.tracking.balance = controller.value().balance;
+  }
   if (!args.balance.empty()) {
     if (args.balance.size() != 5)
       return fail("--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO, got " +
@@ -189,33 +106,16 @@ int runSimulate(const SimulateArgs& args) {
     if (!push.ok()) return fail(push.message());
     settings.pushes.push_back(push.value());
   }
-
-  Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, &clip);
-  if (!plan.ok()) return fail(args.rig + ": " + plan.message());
-  spectral::TargetMotion target;
-  std::string what;
-  if (!args.target_path.empty()) {
-    // Coefficients written by `sinew style -o X.json` (or any edit): tracked as they are.
-    Result<spectral::TargetMotion> loaded = spectral::loadTarget(args.target_path, skeleton);
-    if (!loaded.ok()) return fail(loaded.message());
-    target = std::move(loaded).value();
-    what = args.target_path;
-  } else {
-    spectral::AnalysisSettings analysis;
-    analysis.harmonics = args.harmonics;
-    Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, clip, analysis);
-    if (!spectrum.ok())
-      return fail((args.clip.empty() ? args.rig : args.clip) + ": " + spectrum.message());
-    target = spectral::targetFromSpectrum(spectrum.value(), {}, clip.name);
-    what = "'" + clip.name + "' (K = " + std::to_string(args.harmonics) + ")";
-  }
+  const physics::BodyPlan& plan = rig.plan;
+  const spectral::TargetMotion& target = rig.target;
+  const std::string& what = rig.what;
 
   std::printf("%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
               "%.1f s on %s terrain, balance feedback %s\n",
-              args.rig.c_str(), plan.value().links.size(), plan.value().dofCount(),
-              plan.value().total_mass_kg, what.c_str(), target.period(), args.seconds,
+              args.rig.c_str(), plan.links.size(), plan.dofCount(),
+              plan.total_mass_kg, what.c_str(), target.period(), args.seconds,
               physics::terrainKindName(terrain.value().kind), args.no_feedback ? "off" : "on");
-  Result<physics::SimulationReport> run = physics::simulate(plan.value(), skeleton, target, settings);
+  Result<physics::SimulationReport> run = physics::simulate(plan, skeleton, target, settings);
   if (!run.ok()) return fail(run.message());
   const physics::SimulationReport& r = run.value();
   if (r.fell)
@@ -232,7 +132,7 @@ int runSimulate(const SimulateArgs& args) {
   std::printf("  %zu footfalls\n", r.footfalls.size());
 
   if (!args.output.empty()) {
-    Status status = motion::exportMotion(args.output, rig.value(), r.motion);
+    Status status = motion::exportMotion(args.output, rig.asset, r.motion);
     if (!status.ok()) return fail(status.message());
     std::printf("wrote %s: %d frames at %.0f fps\n", args.output.c_str(), r.motion.frame_count,
                 r.motion.fps());
@@ -252,12 +152,14 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "simulate", "Make the rig's physical character track a clip's harmonic model with joint "
                   "torques; report falls, distance, tracking error and energy");
-  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf)")->required();
+  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf); default: the bundled biped");
   command->add_option("--clip", args->clip,
                       "The motion to track (same skeleton); default: the rig's own");
   command->add_option("--target", args->target_path,
                       "Track these harmonic coefficients (.json from sinew style) instead of the "
                       "clip's; the clip still shapes the body (joint types and limits)");
+  command->add_option("--controller", args->controller_path,
+                      "Replay an evolved controller (best.json from sinew evolve)");
   command->add_option("--animation", args->animation, "Which glTF animation (by name)");
   command->add_option("--seconds", args->seconds, "Simulated time, seconds")
       ->check(CLI::Range(0.001, 3600.0));
@@ -281,7 +183,10 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
                       "Write what the character did (.bvh, .glb, .gltf) on the rig's skeleton");
   command->add_option("--json", args->json_path, "Write the figures as JSON");
   args->import.addTo(*command);
-  command->callback([args, &exit_code]() { exit_code = runSimulate(*args); });
+  command->callback([args, &exit_code]() {
+    if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
+    exit_code = runSimulate(*args);
+  });
 }
 
 }  // namespace sinew::app

@@ -161,6 +161,10 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   next_record += record_every;
   long long step = 0;
   for (; step < steps; ++step) {
+    if (settings.cancel != nullptr && settings.cancel->load(std::memory_order_relaxed)) {
+      report.cancelled = true;
+      break;
+    }
     for (size_t p = 0; p < settings.pushes.size(); ++p)
       if (!pushed[p] && world.time() + 0.5 * world.dt() >= settings.pushes[p].time_s) {
         pushed[p] = 1;

@@ -4,6 +4,7 @@
 // The same inputs give bit-identical results: every run builds a fresh World.
 #pragma once
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct SimulationSettings {
   double fall_height_ratio = 0.5;  // fallen when the centre of mass drops below this share of
                                    // its starting height above the ground, (0, 1)
   bool stop_at_fall = true;   // end the run when the character falls
+  const std::atomic<bool>* cancel = nullptr;  // when set and true, the run ends at the next step
+                                              // (SimulationReport::cancelled): how a search stops
+                                              // within its latency budget mid-evaluation
 
   Status validate() const;  // the message names the offending field
 };
@@ -49,6 +53,7 @@ struct Footfall {
 
 struct SimulationReport {
   bool fell = false;
+  bool cancelled = false;     // ended early by SimulationSettings::cancel: the figures are partial
   double fall_time_s = -1.0;  // -1: did not fall
   std::string fall_reason;    // e.g. "LeftHand touched the ground", "centre of mass at 0.41 m"
   double seconds = 0.0;       // simulated (less than asked when it stopped at a fall)

@@ -1,0 +1,53 @@
+// Shared by `sinew simulate` and `sinew evolve`: loading a rig with the motion to track, parsing
+// terrain and pushes, and the evolved controller file (best.json).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "cli/commands.h"
+#include "sinew/physics/body_plan.h"
+#include "sinew/physics/simulation.h"
+#include "sinew/search/problem.h"
+#include "sinew/spectral/target_motion.h"
+
+namespace sinew::app {
+
+// A rig, its body plan (from the clip) and the motion to track: the clip's harmonic model with K
+// per joint, or coefficients from a JSON file (`target_path`).
+struct LoadedRig {
+  motion::MotionAsset asset;
+  physics::BodyPlan plan;
+  spectral::TargetMotion target;
+  std::string what;  // for messages: "'walk' (K = 5)" or the coefficient file
+};
+Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::string& clip_path,
+                                   const std::string& target_path, const std::string& animation,
+                                   int harmonics, const ImportFlags& import);
+
+// "flat", "slope:5", "steps:0.05,0.6", "rough:0.02,7".
+Result<physics::TerrainSettings> parseTerrain(const std::string& text);
+// "TIME,X,Y,Z[,LINK]".
+Result<physics::Push> parsePush(const std::string& text);
+
+// An evolved controller: the coefficients (spectral target JSON), the balance gains and how it
+// was made. Format "sinew.controller", version 1.
+struct ControllerFile {
+  spectral::TargetMotion target;
+  physics::BalanceGains balance;
+  double window_s = 10.0;
+  std::string terrain = "flat";
+  std::uint64_t seed = 1;
+  std::string optimizer;
+  bool no_prior = false;
+  search::FitnessTerms fitness;
+  std::string rig;
+  std::string clip;
+};
+Status saveController(const std::filesystem::path& path, const ControllerFile& controller,
+                      const motion::Skeleton& skeleton);
+Result<ControllerFile> loadController(const std::filesystem::path& path,
+                                      const motion::Skeleton& skeleton);
+
+}  // namespace sinew::app

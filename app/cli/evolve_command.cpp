@@ -1,0 +1,266 @@
+// sinew evolve: the DFT-seeded evolutionary search. Evolves the Fourier controller of a rig's
+// physical character until its motion keeps the clip's style without falling; prints a line per
+// generation; Ctrl-C stops cleanly, keeping the best so far and a checkpoint. Writes best.bvh,
+// best.glb, best.json (loadable by `sinew simulate --controller`), history.csv and
+// checkpoint.json into --out.
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/controller_file.h"
+#include "sinew/core/file_io.h"
+#include "sinew/physics/body_plan.h"
+#include "sinew/search/session.h"
+#include "sinew/spectral/analysis.h"
+#include "sinew/spectral/target_io.h"
+
+namespace sinew::app {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void onInterrupt(int) { g_interrupted = true; }
+
+struct EvolveArgs {
+  std::string rig;
+  std::string clip;
+  std::string target_path;
+  std::string animation;
+  int population = 0;
+  int generations = 0;
+  double minutes = 0.0;
+  double window = 10.0;
+  std::string optimizer = "cmaes";
+  bool no_prior = false;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  int harmonics = 5;
+  double sigma = 0.0;
+  std::string resume;
+  std::string out;
+  std::string terrain = "flat";
+  ImportFlags import;
+};
+
+std::string historyCsv(const search::Snapshot& snap) {
+  std::ostringstream csv;
+  csv.precision(10);
+  csv << "generation,evaluations,wall_s,total_best,total_mean,total_worst";
+  for (int k = 0; k < search::kFitnessTermCount; ++k) {
+    const std::string n = search::fitnessTermName(k);
+    csv << ',' << n << "_best," << n << "_mean," << n << "_worst";
+  }
+  csv << ",best_survived_s,best_distance_m\n";
+  for (const search::GenerationRecord& r : snap.history) {
+    csv << r.generation << ',' << r.evaluations << ',' << r.wall_s << ',' << r.total.best << ','
+        << r.total.mean << ',' << r.total.worst;
+    for (const search::TermStats& t : r.terms) csv << ',' << t.best << ',' << t.mean << ',' << t.worst;
+    csv << ',' << r.best_survived_s << ',' << r.best_distance_m << '\n';
+  }
+  return csv.str();
+}
+
+std::string termsLine(const search::FitnessTerms& t) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%.2f (fall %.1f track %.2f speed %.2f heading %.2f steps %.2f upright %.2f "
+                "energy %.2f) up %.1f s, %.1f m",
+                t.total, t.fall, t.tracking, t.speed, t.heading, t.placement, t.upright, t.energy,
+                t.survived_s, t.distance_m);
+  return line;
+}
+
+int runEvolve(const EvolveArgs& args) {
+  Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
+                                              args.harmonics, args.import);
+  if (!loaded.ok()) return fail(loaded.message());
+  LoadedRig& rig = loaded.value();
+
+  Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
+  if (!terrain.ok()) return fail(terrain.message());
+  physics::SimulationSettings simulation;
+  simulation.seconds = args.window;
+  simulation.world.terrain = terrain.value();
+  search::GenomeSettings genome;
+  genome.no_prior = args.no_prior;
+  Result<search::Problem> problem =
+      search::Problem::create(rig.plan, rig.asset.skeleton, rig.target, genome, simulation);
+  if (!problem.ok()) return fail(problem.message());
+
+  std::error_code ec;
+  std::filesystem::create_directories(args.out, ec);
+  if (ec) return fail(args.out + ": cannot create the output folder: " + ec.message());
+  const std::filesystem::path out(args.out);
+
+  search::EvolveSettings settings;
+  settings.optimizer = args.optimizer;
+  settings.population = args.population;
+  settings.generations = args.generations;
+  settings.minutes = args.minutes;
+  if (settings.generations == 0 && settings.minutes == 0.0) settings.generations = 40;
+  settings.threads = args.threads;
+  settings.seed = args.seed;
+  if (args.sigma > 0.0) settings.initial_sigma = args.sigma;
+  Result<std::unique_ptr<search::Session>> made = Status::error("no session");
+  if (!args.resume.empty()) {
+    Result<std::string> text = readFile(args.resume);
+    if (!text.ok()) return fail(text.message());
+    nlohmann::json checkpoint;
+    try {
+      checkpoint = nlohmann::json::parse(text.value());
+    } catch (const nlohmann::json::exception& e) {
+      return fail(args.resume + ": not valid JSON: " + e.what());
+    }
+    made = search::Session::resume(std::move(problem).value(), checkpoint);
+    if (!made.ok()) return fail(args.resume + ": " + made.message());
+  } else {
+    made = search::Session::create(std::move(problem).value(), settings);
+    if (!made.ok()) return fail(made.message());
+  }
+  search::Session& session = *made.value();
+  const search::EvolveSettings& used = session.settings();
+  const int threads = used.threads > 0 ? used.threads : search::hardwareThreads();
+  std::printf("evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.0f s, "
+              "seed %llu%s\n",
+              rig.what.c_str(), session.problem().layout.size(),
+              used.optimizer == "cmaes" ? "CMA-ES" : "genetic algorithm",
+              args.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
+              session.snapshot()->population.empty()
+                  ? (used.population > 0 ? used.population : 0)
+                  : static_cast<int>(session.snapshot()->population.size()),
+              used.minutes > 0.0 ? (std::to_string(used.minutes) + " min budget").c_str()
+                                 : (std::to_string(used.generations) + " generations").c_str(),
+              threads, threads == 1 ? "" : "s", args.window,
+              static_cast<unsigned long long>(used.seed),
+              args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
+  std::fflush(stdout);
+
+  g_interrupted = false;
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  session.start();
+  int printed = static_cast<int>(session.snapshot()->history.size());
+  bool interrupted = false;
+  for (;;) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (g_interrupted && !interrupted) {
+      interrupted = true;
+      std::printf("\ninterrupted: stopping, keeping the best so far\n");
+      session.stop();
+    }
+    const auto snap = session.snapshot();
+    for (; printed < static_cast<int>(snap->history.size()); ++printed) {
+      const search::GenerationRecord& r = snap->history[static_cast<size_t>(printed)];
+      const double rate = r.wall_s > 0.0 ? static_cast<double>(r.evaluations) / r.wall_s : 0.0;
+      std::string left;
+      if (used.generations > 0) {
+        const double per = r.wall_s / std::max(1, r.generation);
+        char eta[64];
+        std::snprintf(eta, sizeof eta, ", %.0f s left", per * std::max(0, used.generations - r.generation));
+        left = eta;
+      } else if (used.minutes > 0.0) {
+        char eta[64];
+        std::snprintf(eta, sizeof eta, ", %.0f s left", std::max(0.0, used.minutes * 60.0 - r.wall_s));
+        left = eta;
+      }
+      std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s\n", r.generation,
+                  termsLine(snap->best_terms).c_str(), r.total.mean, rate, left.c_str());
+      std::fflush(stdout);
+    }
+    if (snap->state == "finished" || snap->state == "stopped") break;
+  }
+  session.wait();
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+
+  const auto snap = session.snapshot();
+  Status saved = writeFileAtomically(out / "checkpoint.json", session.checkpoint().dump() + "\n");
+  if (!saved.ok()) return fail(saved.message());
+  saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
+  if (!saved.ok()) return fail(saved.message());
+  if (snap->best_point.empty()) {
+    std::printf("no generation finished: wrote %s and %s only\n",
+                (out / "checkpoint.json").string().c_str(), (out / "history.csv").string().c_str());
+    return interrupted ? 130 : 0;
+  }
+  // The best controller, replayed once more with recording, written three ways.
+  const search::Problem& p = session.problem();
+  ControllerFile controller;
+  controller.target = p.layout.decodeTarget(snap->best_point);
+  controller.balance = p.layout.decodeGains(snap->best_point);
+  controller.window_s = args.window;
+  controller.terrain = args.terrain;
+  controller.seed = used.seed;
+  controller.optimizer = used.optimizer;
+  controller.no_prior = args.no_prior;
+  controller.fitness = snap->best_terms;
+  controller.rig = args.rig;
+  controller.clip = args.clip.empty() ? args.rig : args.clip;
+  saved = saveController(out / "best.json", controller, rig.asset.skeleton);
+  if (!saved.ok()) return fail(saved.message());
+  const search::Evaluation replay = search::evaluate(p, snap->best_point, nullptr, true);
+  for (const char* name : {"best.bvh", "best.glb"}) {
+    saved = motion::exportMotion(out / name, rig.asset, replay.report.motion);
+    if (!saved.ok()) return fail(saved.message());
+  }
+  std::printf("best after %d generations (%lld evaluations): %s\n", snap->generation,
+              snap->evaluations, termsLine(snap->best_terms).c_str());
+  std::printf("wrote %s: best.bvh, best.glb, best.json, history.csv, checkpoint.json\n",
+              args.out.c_str());
+  return interrupted ? 130 : 0;
+}
+
+}  // namespace
+
+void addEvolveCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<EvolveArgs>();
+  CLI::App* command = app.add_subcommand(
+      "evolve", "Evolve the rig's Fourier controller (seeded from the clip's DFT) until the "
+                "simulated motion keeps the style without falling");
+  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf); default: the bundled biped");
+  command->add_option("--clip", args->clip, "The motion (same skeleton); default: the rig's own");
+  command->add_option("--target", args->target_path,
+                      "Start from these coefficients (.json from sinew style) instead of the clip's");
+  command->add_option("--animation", args->animation, "Which glTF animation (by name)");
+  command->add_option("--population", args->population, "Individuals per generation (default: "
+                                                         "CMA-ES 4 + 3 ln n, GA 32)")
+      ->check(CLI::Range(0, 10000));
+  command->add_option("--generations", args->generations, "Generations (default 40)")
+      ->check(CLI::Range(0, 1000000));
+  command->add_option("--minutes", args->minutes, "Wall-clock budget, minutes")
+      ->check(CLI::Range(0.0, 100000.0));
+  command->add_option("--window", args->window, "Seconds simulated per evaluation (default 10)")
+      ->check(CLI::Range(0.5, 600.0));
+  command->add_option("--optimizer", args->optimizer, "cmaes (default) or ga")
+      ->check(CLI::IsMember({"cmaes", "ga"}));
+  command->add_flag("--no-prior", args->no_prior,
+                    "Random start within generic ranges (the baseline the DFT prior is measured "
+                    "against)");
+  command->add_option("--seed", args->seed, "Random seed (same seed, same result)");
+  command->add_option("--threads", args->threads, "Evaluation threads (default: every core)")
+      ->check(CLI::Range(0, 1024));
+  command->add_option("--harmonics", args->harmonics, "Harmonics per joint of the seed")
+      ->check(CLI::Range(1, 64));
+  command->add_option("--terrain", args->terrain,
+                      "flat | slope:DEG | steps:HEIGHT,DEPTH | rough:AMPLITUDE,SEED");
+  command->add_option("--sigma", args->sigma,
+                      "Initial step size in normalised units (default 0.02; the GA's mutation "
+                      "scale)")
+      ->check(CLI::Range(0.0, 1.0));
+  command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
+  command->add_option("--out", args->out, "Output folder")->required();
+  args->import.addTo(*command);
+  command->callback([args, &exit_code]() {
+    if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
+    exit_code = runEvolve(*args);
+  });
+}
+
+}  // namespace sinew::app

@@ -1,0 +1,145 @@
+// What the evolutionary search optimises: the genome (a controller's Fourier coefficients, its
+// stride frequency and its balance gains, in normalised coordinates with ranges derived from the
+// analysed motion), the fitness of a simulated run, and the parallel evaluation of a generation.
+//
+// Genome (GenomeLayout). For every rotation channel of a joint that moves a body (a joint in some
+// link's chain, or the base's), in the seed target's channel order: the offset A, then (B_n, D_n)
+// for each kept harmonic; then omega_0; then the five balance gains. Coordinate x in [0, 1] maps
+//   A     = A0 + (2x - 1) offset_range_rad
+//   B     = B0 * amplitude_factor^(2x - 1)              (x = 0.5: B0; never negative)
+//   D     = D0 + (2x - 1) phase_range_rad
+//   omega = omega0 * (1 + (2x - 1) omega_range)
+//   gains = lo + x (hi - lo)  (cd, cv in [-gain_range, gain_range]; torso in [0, 1])
+// so the seed point (the DFT prior) is x = 0.5 for the coefficients and the defaults' place for
+// the gains. No prior (`no_prior`): the same structure (channels, harmonic numbers) but generic
+// ranges that know nothing of the clip: base rotations at the rig's rest pose, A in +-1 rad,
+// B in [0, 0.5] rad, D in +-pi, omega in [0.5, 2] x omega0, and a random start.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "sinew/core/status.h"
+#include "sinew/motion/clip.h"
+#include "sinew/motion/skeleton.h"
+#include "sinew/physics/body_plan.h"
+#include "sinew/physics/simulation.h"
+#include "sinew/spectral/target_motion.h"
+
+namespace sinew::search {
+
+struct GenomeSettings {
+  double offset_range_rad = 0.17;  // A within +-10 degrees of the clip's, > 0
+  double amplitude_factor = 2.0;   // B within [B0 / f, B0 f], > 1
+  double phase_range_rad = 0.5;    // D within +-0.5 rad of the clip's, > 0
+  double omega_range = 0.2;        // omega0 within +-20%, [0, 0.9]
+  double gain_range = 1.0;         // cd and cv within +-this, rad/m and rad/(m/s), > 0
+  bool no_prior = false;           // generic ranges and a random start (the baseline)
+
+  Status validate() const;  // the message names the offending field
+};
+
+class GenomeLayout {
+ public:
+  static Result<GenomeLayout> create(const physics::BodyPlan& plan, const motion::Skeleton& skeleton,
+                                     const spectral::TargetMotion& seed,
+                                     const GenomeSettings& settings = {});
+
+  int size() const { return static_cast<int>(lo_.size()); }
+  // The start of the search: the DFT prior (or, without a prior, a uniform random point from
+  // `seed`).
+  std::vector<double> startPoint(std::uint64_t seed) const;
+  // The controller a point describes. Precondition: x.size() == size(), each in [0, 1].
+  spectral::TargetMotion decodeTarget(std::span<const double> x) const;
+  physics::BalanceGains decodeGains(std::span<const double> x) const;
+  // The point of a target and gains of this layout's structure (clamped into range): how an
+  // evolved controller saved as JSON comes back as a genome.
+  std::vector<double> encode(const spectral::TargetMotion& target,
+                             const physics::BalanceGains& gains) const;
+  const std::vector<std::string>& names() const { return names_; }  // (size) e.g. "LeftUpLeg.x.B3"
+
+ private:
+  enum class Kind : std::uint8_t { kOffset, kAmplitude, kPhase, kOmega, kGain };
+  struct Gene {
+    Kind kind = Kind::kOffset;
+    int channel = -1;  // index into target channels (coefficients)
+    int term = -1;     // index into that channel's terms
+    int gain = -1;     // 0..4: cd_s, cv_s, cd_c, cv_c, torso
+  };
+  double value(size_t i, double x) const;
+  double coordinate(size_t i, double v) const;
+
+  spectral::TargetMotion seed_;  // the structure; its base rotations (rest pose without a prior)
+  GenomeSettings settings_;
+  std::vector<Gene> genes_;
+  std::vector<double> lo_, hi_, prior_;  // per gene: range and the prior's value
+  std::vector<std::string> names_;
+};
+
+// Weights of the fitness terms (the cost is their weighted sum; lower is better).
+struct FitnessWeights {
+  double fall = 10.0;       // per second of the window lost to a fall
+  double tracking = 5.0;    // per radian of RMS joint-angle error against the seed target
+  double speed = 2.0;       // per m/s between the run's speed and the reference's
+  double heading = 1.0;     // per radian between the run's direction and the reference's
+  double placement = 2.0;   // per metre between the mean step length and the reference's
+  double upright = 2.0;     // per unit of (1 - lowest cosine of the pelvis's tilt)
+  double energy = 0.002;    // per (N^2 m^2 s / kg) / s of squared torque
+  Status validate() const;  // the message names the offending field
+};
+
+// One evaluation's terms (already weighted) and raw figures.
+struct FitnessTerms {
+  double fall = 0.0, tracking = 0.0, speed = 0.0, heading = 0.0, placement = 0.0, upright = 0.0,
+         energy = 0.0;
+  double total = 0.0;
+  double survived_s = 0.0;  // seconds before the fall (the window when it did not fall)
+  double distance_m = 0.0;
+  double speed_m_s = 0.0;
+  double track_err_rad_rms = 0.0;
+  bool fell = false;
+};
+inline constexpr int kFitnessTermCount = 7;
+const char* fitnessTermName(int term);            // "fall", "tracking", ...
+double fitnessTerm(const FitnessTerms& t, int term);
+
+// Everything an evaluation needs; built once per search.
+struct Problem {
+  physics::BodyPlan plan;
+  motion::Skeleton skeleton;
+  spectral::TargetMotion seed;  // the analysed (and edited) motion the controller starts from
+  GenomeLayout layout;
+  physics::SimulationSettings simulation;  // window (seconds), terrain, pushes
+  FitnessWeights weights;
+  double reference_speed_m_s = 0.0;  // horizontal, from the seed target's travel
+  glm::dvec3 reference_direction{0.0, 0.0, 1.0};
+  double reference_step_m = 0.0;     // reference speed x period / 2
+
+  static Result<Problem> create(const physics::BodyPlan& plan, const motion::Skeleton& skeleton,
+                                const spectral::TargetMotion& seed, const GenomeSettings& genome,
+                                const physics::SimulationSettings& simulation,
+                                const FitnessWeights& weights = {});
+};
+
+// Simulates one point and scores it. `cancel` ends it early (the result is then not a fitness:
+// `cancelled` set). `record`: keep the recorded motion in `report`.
+struct Evaluation {
+  FitnessTerms terms;
+  bool cancelled = false;
+  physics::SimulationReport report;  // motion kept only when asked
+};
+Evaluation evaluate(const Problem& problem, std::span<const double> x,
+                    const std::atomic<bool>* cancel = nullptr, bool record = false);
+// The fitness of a simulation report against the problem's references.
+FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& report);
+
+// A generation on `threads` workers (each evaluation builds its own world, so the results do not
+// depend on the thread count). Results in the points' order.
+std::vector<Evaluation> evaluateAll(const Problem& problem,
+                                    const std::vector<std::vector<double>>& points, int threads,
+                                    const std::atomic<bool>* cancel = nullptr, bool record = false);
+
+}  // namespace sinew::search

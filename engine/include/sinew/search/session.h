@@ -1,0 +1,129 @@
+// A search session: the optimiser, the problem and a worker thread that evaluates generation
+// after generation, as the editor and `sinew evolve` drive it.
+//
+// - start() runs generations on a background thread; pause(), resume() and stop() are honoured
+//   within one simulation step of every evaluation in flight (well under 100 ms): the generation
+//   in flight is abandoned and, after resume(), evaluated again from the same points, which gives
+//   the same results (evaluations are deterministic), so pausing changes nothing.
+// - After each generation the session publishes an immutable Snapshot (shared_ptr): per-term
+//   best/mean/worst history, the best point and its terms, the population's points, terms and
+//   (when `record_population`) recorded motions for live replay.
+// - Fitness weights changed with setWeights() apply from the next generation.
+// - checkpoint() is the optimiser's state, the history and the settings between generations;
+//   Session::resume() continues from it to the same result as an uninterrupted run.
+// - The same seed gives the same best point and cost bit for bit, whatever the thread count.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "sinew/core/status.h"
+#include "sinew/search/optimizer.h"
+#include "sinew/search/problem.h"
+
+namespace sinew::search {
+
+struct EvolveSettings {
+  std::string optimizer = "cmaes";  // "cmaes" or "ga"
+  int population = 0;               // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32)
+  int generations = 40;             // budget in generations, >= 0 (0: only the time budget)
+  double minutes = 0.0;             // wall-clock budget, minutes, >= 0 (0: none)
+  int threads = 0;                  // evaluation workers, >= 0 (0: every core)
+  std::uint64_t seed = 1;
+  double initial_sigma = 0.02;      // CMA-ES step size (GA: mutation scale), normalised units,
+                                    // (0, 1]: small, the prior walks already
+  bool record_population = false;   // keep every individual's recorded motion in the snapshots
+
+  Status validate() const;  // the message names the offending field
+};
+
+struct TermStats {
+  double best = 0.0, mean = 0.0, worst = 0.0;  // over the generation's finished evaluations
+};
+
+struct GenerationRecord {
+  int generation = 0;        // 1 for the first finished generation
+  long long evaluations = 0;  // so far
+  double wall_s = 0.0;        // since the session (or its first part, when resumed) started
+  TermStats total;
+  std::array<TermStats, kFitnessTermCount> terms{};
+  double best_survived_s = 0.0;  // of the generation's best
+  double best_distance_m = 0.0;
+};
+
+struct Snapshot {
+  int generation = 0;
+  long long evaluations = 0;
+  std::vector<GenerationRecord> history;
+  std::vector<double> best_point;  // best so far (empty before the first generation)
+  FitnessTerms best_terms;
+  std::vector<std::vector<double>> population;  // the last finished generation's points
+  std::vector<FitnessTerms> population_terms;
+  std::vector<motion::Clip> population_motions;  // when record_population
+  std::string state;  // "ready", "running", "paused", "stopped", "finished"
+};
+
+class Session {
+ public:
+  static Result<std::unique_ptr<Session>> create(Problem problem, const EvolveSettings& settings);
+  // From checkpoint(); the problem must be built as it was (the same rig, clip and settings).
+  static Result<std::unique_ptr<Session>> resume(Problem problem, const nlohmann::json& checkpoint);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  void start();   // runs on a background thread until the budget, stop() or convergence
+  void pause();   // returns once the worker is idle
+  void resume();
+  void stop();    // returns once the worker has ended
+  void wait();    // until the worker ends by itself or is stopped
+  // One generation on the calling thread (not while started); false when the budget is spent
+  // or the run was cancelled.
+  bool runGeneration();
+
+  void setWeights(const FitnessWeights& weights);  // from the next generation
+  std::shared_ptr<const Snapshot> snapshot() const;
+  nlohmann::json checkpoint() const;
+  const Problem& problem() const { return problem_; }
+  const EvolveSettings& settings() const { return settings_; }
+  bool finished() const;  // budget spent or converged
+
+ private:
+  Session(Problem problem, const EvolveSettings& settings);
+  void workerLoop();
+  void publish(const std::string& state);
+
+  Problem problem_;
+  EvolveSettings settings_;
+  std::unique_ptr<Optimizer> optimizer_;
+  std::vector<GenerationRecord> history_;
+  std::vector<double> best_point_;
+  FitnessTerms best_terms_;
+  double wall_offset_s_ = 0.0;  // wall time of earlier parts (resumed sessions)
+  double started_at_ = 0.0;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::shared_ptr<const Snapshot> snapshot_;
+  FitnessWeights pending_weights_;
+  bool weights_changed_ = false;
+  std::atomic<bool> cancel_{false};
+  bool paused_ = false;
+  bool stopping_ = false;
+  bool running_ = false;
+  std::thread worker_;
+};
+
+// The number of hardware threads (at least 1).
+int hardwareThreads();
+
+}  // namespace sinew::search

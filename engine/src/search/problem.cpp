@@ -1,0 +1,337 @@
+#include "sinew/search/problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+#include "sinew/physics/tracking.h"
+#include "sinew/search/random.h"
+
+namespace sinew::search {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const char* const kGainNames[5] = {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal",
+                                   "torso"};
+const char* const kAxes = "xyz";
+
+double* gainField(physics::BalanceGains& g, int i) {
+  switch (i) {
+    case 0:
+      return &g.cd_sagittal;
+    case 1:
+      return &g.cv_sagittal;
+    case 2:
+      return &g.cd_coronal;
+    case 3:
+      return &g.cv_coronal;
+    default:
+      return &g.torso;
+  }
+}
+
+}  // namespace
+
+Status GenomeSettings::validate() const {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!positive(offset_range_rad)) return Status::error("offset_range_rad must be > 0");
+  if (!(std::isfinite(amplitude_factor) && amplitude_factor > 1.0))
+    return Status::error("amplitude_factor must be > 1");
+  if (!positive(phase_range_rad)) return Status::error("phase_range_rad must be > 0");
+  if (!(std::isfinite(omega_range) && omega_range >= 0.0 && omega_range <= 0.9))
+    return Status::error("omega_range must be in [0, 0.9]");
+  if (!positive(gain_range)) return Status::error("gain_range must be > 0");
+  return Status();
+}
+
+Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
+                                          const motion::Skeleton& skeleton,
+                                          const spectral::TargetMotion& seed,
+                                          const GenomeSettings& settings) {
+  if (Status s = settings.validate(); !s.ok()) return Status::error("genome: " + s.message());
+  if (Status s = seed.validate(skeleton); !s.ok()) return Status::error("seed motion: " + s.message());
+  // Joints that move a body: in some actuated link's chain, or on the way to the base.
+  std::vector<char> moves(static_cast<size_t>(skeleton.jointCount()), 0);
+  for (const physics::Link& link : plan.links)
+    if (link.type == physics::JointType::kBall || link.type == physics::JointType::kHinge)
+      for (int j : link.chain) moves[static_cast<size_t>(j)] = 1;
+  for (int j : plan.base_chain) moves[static_cast<size_t>(j)] = 1;
+
+  GenomeLayout g;
+  g.seed_ = seed;
+  g.settings_ = settings;
+  if (settings.no_prior) g.seed_.base_rotations = skeleton.rest_rotations;
+  auto add = [&](Kind kind, int channel, int term, int gain, double lo, double hi, double prior,
+                 std::string name) {
+    g.genes_.push_back({kind, channel, term, gain});
+    g.lo_.push_back(lo);
+    g.hi_.push_back(hi);
+    g.prior_.push_back(prior);
+    g.names_.push_back(std::move(name));
+  };
+  for (size_t c = 0; c < seed.channels.size(); ++c) {
+    const spectral::ChannelModel& ch = seed.channels[c];
+    if (ch.kind != spectral::SignalKind::kRotation || !moves[static_cast<size_t>(ch.joint)]) continue;
+    const std::string base = skeleton.names[static_cast<size_t>(ch.joint)] + "." + kAxes[ch.axis];
+    const int ci = static_cast<int>(c);
+    if (settings.no_prior)
+      add(Kind::kOffset, ci, -1, -1, -1.0, 1.0, 0.0, base + ".A");
+    else
+      add(Kind::kOffset, ci, -1, -1, ch.mean - settings.offset_range_rad,
+          ch.mean + settings.offset_range_rad, ch.mean, base + ".A");
+    for (size_t t = 0; t < ch.terms.size(); ++t) {
+      const spectral::Harmonic& h = ch.terms[t];
+      const std::string n = std::to_string(h.n);
+      const int ti = static_cast<int>(t);
+      if (settings.no_prior) {
+        add(Kind::kAmplitude, ci, ti, -1, 0.0, 0.5, 0.0, base + ".B" + n);
+        add(Kind::kPhase, ci, ti, -1, -kPi, kPi, 0.0, base + ".D" + n);
+      } else {
+        add(Kind::kAmplitude, ci, ti, -1, h.amplitude / settings.amplitude_factor,
+            h.amplitude * settings.amplitude_factor, h.amplitude, base + ".B" + n);
+        add(Kind::kPhase, ci, ti, -1, h.phase - settings.phase_range_rad,
+            h.phase + settings.phase_range_rad, h.phase, base + ".D" + n);
+      }
+    }
+  }
+  if (settings.no_prior)
+    add(Kind::kOmega, -1, -1, -1, 0.5 * seed.omega0, 2.0 * seed.omega0, seed.omega0, "omega0");
+  else
+    add(Kind::kOmega, -1, -1, -1, seed.omega0 * (1.0 - settings.omega_range),
+        seed.omega0 * (1.0 + settings.omega_range), seed.omega0, "omega0");
+  const physics::BalanceGains defaults;
+  physics::BalanceGains copy = defaults;
+  for (int i = 0; i < 5; ++i) {
+    const double lo = i == 4 ? 0.0 : -settings.gain_range;
+    const double hi = i == 4 ? 1.0 : settings.gain_range;
+    add(Kind::kGain, -1, -1, i, lo, hi, *gainField(copy, i), std::string("balance.") + kGainNames[i]);
+  }
+  return g;
+}
+
+double GenomeLayout::value(size_t i, double x) const {
+  x = std::clamp(x, 0.0, 1.0);
+  if (genes_[i].kind == Kind::kAmplitude && !settings_.no_prior) {
+    // Geometric: x = 0.5 is the prior, each end a factor away.
+    return prior_[i] * std::pow(settings_.amplitude_factor, 2.0 * x - 1.0);
+  }
+  if (genes_[i].kind == Kind::kOmega && settings_.no_prior)
+    return prior_[i] * std::pow(2.0, 2.0 * x - 1.0);
+  return lo_[i] + x * (hi_[i] - lo_[i]);
+}
+
+double GenomeLayout::coordinate(size_t i, double v) const {
+  double x = 0.5;
+  if (genes_[i].kind == Kind::kAmplitude && !settings_.no_prior) {
+    x = prior_[i] > 0.0 && v > 0.0
+            ? 0.5 * (1.0 + std::log(v / prior_[i]) / std::log(settings_.amplitude_factor))
+            : 0.0;
+  } else if (genes_[i].kind == Kind::kOmega && settings_.no_prior) {
+    x = 0.5 * (1.0 + std::log2(v / prior_[i]));
+  } else if (hi_[i] > lo_[i]) {
+    x = (v - lo_[i]) / (hi_[i] - lo_[i]);
+  }
+  return std::clamp(x, 0.0, 1.0);
+}
+
+std::vector<double> GenomeLayout::startPoint(std::uint64_t seed) const {
+  std::vector<double> x(genes_.size());
+  if (settings_.no_prior) {
+    Random random(seed);
+    for (double& v : x) v = random.uniform();
+    return x;
+  }
+  for (size_t i = 0; i < genes_.size(); ++i) x[i] = coordinate(i, prior_[i]);
+  return x;
+}
+
+spectral::TargetMotion GenomeLayout::decodeTarget(std::span<const double> x) const {
+  spectral::TargetMotion target = seed_;
+  for (size_t i = 0; i < genes_.size(); ++i) {
+    const Gene& g = genes_[i];
+    const double v = value(i, x[i]);
+    switch (g.kind) {
+      case Kind::kOffset:
+        target.channels[static_cast<size_t>(g.channel)].mean = v;
+        break;
+      case Kind::kAmplitude:
+        target.channels[static_cast<size_t>(g.channel)].terms[static_cast<size_t>(g.term)].amplitude = v;
+        break;
+      case Kind::kPhase:
+        target.channels[static_cast<size_t>(g.channel)].terms[static_cast<size_t>(g.term)].phase = v;
+        break;
+      case Kind::kOmega:
+        target.omega0 = v;
+        break;
+      case Kind::kGain:
+        break;
+    }
+  }
+  return target;
+}
+
+physics::BalanceGains GenomeLayout::decodeGains(std::span<const double> x) const {
+  physics::BalanceGains gains;
+  for (size_t i = 0; i < genes_.size(); ++i)
+    if (genes_[i].kind == Kind::kGain) *gainField(gains, genes_[i].gain) = value(i, x[i]);
+  return gains;
+}
+
+std::vector<double> GenomeLayout::encode(const spectral::TargetMotion& target,
+                                         const physics::BalanceGains& gains) const {
+  std::vector<double> x(genes_.size(), 0.5);
+  physics::BalanceGains copy = gains;
+  for (size_t i = 0; i < genes_.size(); ++i) {
+    const Gene& g = genes_[i];
+    double v = 0.0;
+    switch (g.kind) {
+      case Kind::kOffset:
+        v = target.channels[static_cast<size_t>(g.channel)].mean;
+        break;
+      case Kind::kAmplitude:
+        v = target.channels[static_cast<size_t>(g.channel)].terms[static_cast<size_t>(g.term)].amplitude;
+        break;
+      case Kind::kPhase:
+        v = target.channels[static_cast<size_t>(g.channel)].terms[static_cast<size_t>(g.term)].phase;
+        break;
+      case Kind::kOmega:
+        v = target.omega0;
+        break;
+      case Kind::kGain:
+        v = *gainField(copy, g.gain);
+        break;
+    }
+    x[i] = coordinate(i, v);
+  }
+  return x;
+}
+
+Status FitnessWeights::validate() const {
+  for (double w : {fall, tracking, speed, heading, placement, upright, energy})
+    if (!(std::isfinite(w) && w >= 0.0))
+      return Status::error("fitness weights (fall, tracking, speed, heading, placement, upright, "
+                           "energy) must be finite and >= 0");
+  return Status();
+}
+
+const char* fitnessTermName(int term) {
+  static const char* const names[kFitnessTermCount] = {"fall",      "tracking", "speed", "heading",
+                                                       "placement", "upright",  "energy"};
+  return term >= 0 && term < kFitnessTermCount ? names[term] : "";
+}
+
+double fitnessTerm(const FitnessTerms& t, int term) {
+  switch (term) {
+    case 0:
+      return t.fall;
+    case 1:
+      return t.tracking;
+    case 2:
+      return t.speed;
+    case 3:
+      return t.heading;
+    case 4:
+      return t.placement;
+    case 5:
+      return t.upright;
+    case 6:
+      return t.energy;
+    default:
+      return 0.0;
+  }
+}
+
+Result<Problem> Problem::create(const physics::BodyPlan& plan, const motion::Skeleton& skeleton,
+                                const spectral::TargetMotion& seed, const GenomeSettings& genome,
+                                const physics::SimulationSettings& simulation,
+                                const FitnessWeights& weights) {
+  if (Status s = weights.validate(); !s.ok()) return s;
+  if (Status s = simulation.validate(); !s.ok()) return Status::error("simulation: " + s.message());
+  Result<GenomeLayout> layout = GenomeLayout::create(plan, skeleton, seed, genome);
+  if (!layout.ok()) return layout.status();
+  Problem p{plan, skeleton, seed, std::move(layout).value(), simulation, weights};
+  const physics::MotionState state = physics::targetState(plan, skeleton, seed, 0.0);
+  glm::dvec3 v = state.base_linear;
+  v.y = 0.0;
+  p.reference_speed_m_s = glm::length(v);
+  if (p.reference_speed_m_s > 1e-6) p.reference_direction = v / p.reference_speed_m_s;
+  p.reference_step_m = p.reference_speed_m_s * seed.period() / 2.0;
+  return p;
+}
+
+FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& r) {
+  const FitnessWeights& w = problem.weights;
+  const double window = problem.simulation.seconds;
+  FitnessTerms t;
+  t.fell = r.fell;
+  t.survived_s = r.fell ? r.fall_time_s : r.seconds;
+  t.distance_m = r.distance_m;
+  t.speed_m_s = r.speed_m_s;
+  t.track_err_rad_rms = r.track_err_rad_rms;
+  t.fall = w.fall * std::max(0.0, window - t.survived_s);
+  t.tracking = w.tracking * r.track_err_rad_rms;
+  t.speed = w.speed * std::abs(r.speed_m_s - problem.reference_speed_m_s);
+  if (r.com.size() >= 2 && problem.reference_speed_m_s > 1e-6) {
+    glm::dvec3 d = r.com.back() - r.com.front();
+    d.y = 0.0;
+    const double length = glm::length(d);
+    const double cosine =
+        length > 1e-6 ? std::clamp(glm::dot(d / length, problem.reference_direction), -1.0, 1.0) : -1.0;
+    t.heading = w.heading * std::acos(cosine);
+  }
+  // Step length: between consecutive footfalls of different feet, along the reference direction.
+  double steps = 0.0, sum = 0.0;
+  for (size_t i = 1; i < r.footfalls.size(); ++i) {
+    if (r.footfalls[i].foot == r.footfalls[i - 1].foot) continue;
+    sum += std::abs(glm::dot(r.footfalls[i].position - r.footfalls[i - 1].position,
+                             problem.reference_direction));
+    steps += 1.0;
+  }
+  const double step = steps > 0.0 ? sum / steps : 0.0;
+  t.placement = w.placement * std::abs(step - problem.reference_step_m);
+  t.upright = w.upright * (1.0 - r.min_uprightness);
+  t.energy = w.energy * r.torque_sq_per_kg / std::max(r.seconds, 1e-3);
+  t.total = t.fall + t.tracking + t.speed + t.heading + t.placement + t.upright + t.energy;
+  return t;
+}
+
+Evaluation evaluate(const Problem& problem, std::span<const double> x,
+                    const std::atomic<bool>* cancel, bool record) {
+  Evaluation e;
+  physics::SimulationSettings settings = problem.simulation;
+  settings.tracking.balance = problem.layout.decodeGains(x);
+  settings.cancel = cancel;
+  if (!record) settings.record_fps = std::min(settings.record_fps, 5.0);
+  const spectral::TargetMotion target = problem.layout.decodeTarget(x);
+  Result<physics::SimulationReport> run =
+      physics::simulate(problem.plan, problem.skeleton, target, settings);
+  if (!run.ok()) {
+    e.terms.total = std::numeric_limits<double>::quiet_NaN();
+    return e;
+  }
+  e.report = std::move(run).value();
+  e.cancelled = e.report.cancelled;
+  e.terms = scoreRun(problem, e.report);
+  if (!record) e.report.motion = {};
+  return e;
+}
+
+std::vector<Evaluation> evaluateAll(const Problem& problem,
+                                    const std::vector<std::vector<double>>& points, int threads,
+                                    const std::atomic<bool>* cancel, bool record) {
+  std::vector<Evaluation> results(points.size());
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t i = next.fetch_add(1); i < points.size(); i = next.fetch_add(1))
+      results[i] = evaluate(problem, points[i], cancel, record);
+  };
+  const int workers = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(1, points.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < workers; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  return results;
+}
+
+}  // namespace sinew::search

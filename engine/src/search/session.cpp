@@ -1,0 +1,388 @@
+#include "sinew/search/session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "sinew/search/cmaes.h"
+#include "sinew/search/genetic.h"
+
+namespace sinew::search {
+namespace {
+
+constexpr const char* kSessionFormat = "sinew.search_session";
+constexpr int kSessionVersion = 1;
+// Above this many coordinates CMA-ES keeps a diagonal covariance (sep-CMA-ES): O(n) per sample.
+constexpr int kDiagonalAbove = 100;
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+nlohmann::json termsJson(const FitnessTerms& t) {
+  nlohmann::json j;
+  for (int k = 0; k < kFitnessTermCount; ++k) j[fitnessTermName(k)] = fitnessTerm(t, k);
+  j["total"] = t.total;
+  j["survived_s"] = t.survived_s;
+  j["distance_m"] = t.distance_m;
+  j["speed_m_s"] = t.speed_m_s;
+  j["track_err_rad_rms"] = t.track_err_rad_rms;
+  j["fell"] = t.fell;
+  return j;
+}
+
+FitnessTerms termsFromJson(const nlohmann::json& j) {
+  FitnessTerms t;
+  t.fall = j.at("fall").get<double>();
+  t.tracking = j.at("tracking").get<double>();
+  t.speed = j.at("speed").get<double>();
+  t.heading = j.at("heading").get<double>();
+  t.placement = j.at("placement").get<double>();
+  t.upright = j.at("upright").get<double>();
+  t.energy = j.at("energy").get<double>();
+  t.total = j.at("total").get<double>();
+  t.survived_s = j.at("survived_s").get<double>();
+  t.distance_m = j.at("distance_m").get<double>();
+  t.speed_m_s = j.at("speed_m_s").get<double>();
+  t.track_err_rad_rms = j.at("track_err_rad_rms").get<double>();
+  t.fell = j.at("fell").get<bool>();
+  return t;
+}
+
+nlohmann::json statsJson(const TermStats& s) { return {s.best, s.mean, s.worst}; }
+TermStats statsFromJson(const nlohmann::json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+nlohmann::json weightsJson(const FitnessWeights& w) {
+  return {{"fall", w.fall},           {"tracking", w.tracking}, {"speed", w.speed},
+          {"heading", w.heading},     {"placement", w.placement}, {"upright", w.upright},
+          {"energy", w.energy}};
+}
+
+}  // namespace
+
+int hardwareThreads() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+Status EvolveSettings::validate() const {
+  if (optimizer != "cmaes" && optimizer != "ga")
+    return Status::error("optimizer must be cmaes or ga, not '" + optimizer + "'");
+  if (population < 0) return Status::error("population must be >= 0");
+  if (generations < 0) return Status::error("generations must be >= 0");
+  if (!(std::isfinite(minutes) && minutes >= 0.0)) return Status::error("minutes must be >= 0");
+  if (generations == 0 && minutes == 0.0)
+    return Status::error("generations and minutes are both 0: give the search a budget");
+  if (threads < 0) return Status::error("threads must be >= 0");
+  if (!(std::isfinite(initial_sigma) && initial_sigma > 0.0 && initial_sigma <= 1.0))
+    return Status::error("initial_sigma must be in (0, 1]");
+  return Status();
+}
+
+Session::Session(Problem problem, const EvolveSettings& settings)
+    : problem_(std::move(problem)), settings_(settings), pending_weights_(problem_.weights) {}
+
+Session::~Session() {
+  stop();
+}
+
+Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSettings& settings) {
+  if (Status s = settings.validate(); !s.ok()) return Status::error("search settings: " + s.message());
+  std::unique_ptr<Session> session(new Session(std::move(problem), settings));
+  const int n = session->problem_.layout.size();
+  const std::vector<double> start = session->problem_.layout.startPoint(settings.seed);
+  if (settings.optimizer == "cmaes") {
+    CmaesSettings c;
+    c.population = settings.population;
+    c.initial_sigma = settings.initial_sigma;
+    c.initial_mean = start;
+    c.diagonal = n > kDiagonalAbove;
+    c.seed = settings.seed;
+    Result<std::unique_ptr<Cmaes>> made = Cmaes::create(n, c);
+    if (!made.ok()) return made.status();
+    session->optimizer_ = std::move(made).value();
+  } else {
+    GeneticSettings g;
+    g.population = settings.population > 0 ? settings.population : 32;
+    g.initial_point = start;
+    g.initial_spread = settings.initial_sigma;
+    g.mutation_scale = settings.initial_sigma;
+    g.seed = settings.seed;
+    Result<std::unique_ptr<Genetic>> made = Genetic::create(n, g);
+    if (!made.ok()) return made.status();
+    session->optimizer_ = std::move(made).value();
+  }
+  session->publish("ready");
+  return session;
+}
+
+Result<std::unique_ptr<Session>> Session::resume(Problem problem, const nlohmann::json& checkpoint) {
+  try {
+    if (checkpoint.at("format").get<std::string>() != kSessionFormat)
+      return Status::error("checkpoint: format is not " + std::string(kSessionFormat));
+    if (checkpoint.at("version").get<int>() != kSessionVersion)
+      return Status::error("checkpoint: version " + checkpoint.at("version").dump() + " is not " +
+                           std::to_string(kSessionVersion));
+    const nlohmann::json& s = checkpoint.at("settings");
+    EvolveSettings settings;
+    settings.optimizer = s.at("optimizer").get<std::string>();
+    settings.population = s.at("population").get<int>();
+    settings.generations = s.at("generations").get<int>();
+    settings.minutes = s.at("minutes").get<double>();
+    settings.threads = s.at("threads").get<int>();
+    settings.seed = s.at("seed").get<std::uint64_t>();
+    settings.initial_sigma = s.at("initial_sigma").get<double>();
+    settings.record_population = s.at("record_population").get<bool>();
+    if (Status st = settings.validate(); !st.ok()) return Status::error("checkpoint: settings: " + st.message());
+    if (checkpoint.at("genome_size").get<int>() != problem.layout.size())
+      return Status::error("checkpoint: its genome has " + checkpoint.at("genome_size").dump() +
+                           " coordinates, this rig and clip give " +
+                           std::to_string(problem.layout.size()) + ": not the same search");
+    const nlohmann::json& w = checkpoint.at("weights");
+    problem.weights = {w.at("fall").get<double>(),      w.at("tracking").get<double>(),
+                       w.at("speed").get<double>(),     w.at("heading").get<double>(),
+                       w.at("placement").get<double>(), w.at("upright").get<double>(),
+                       w.at("energy").get<double>()};
+    std::unique_ptr<Session> session(new Session(std::move(problem), settings));
+    Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
+    if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());
+    session->optimizer_ = std::move(optimizer).value();
+    for (const nlohmann::json& h : checkpoint.at("history")) {
+      GenerationRecord r;
+      r.generation = h.at("generation").get<int>();
+      r.evaluations = h.at("evaluations").get<long long>();
+      r.wall_s = h.at("wall_s").get<double>();
+      r.total = statsFromJson(h.at("total"));
+      for (int k = 0; k < kFitnessTermCount; ++k) r.terms[static_cast<size_t>(k)] = statsFromJson(h.at(fitnessTermName(k)));
+      r.best_survived_s = h.at("best_survived_s").get<double>();
+      r.best_distance_m = h.at("best_distance_m").get<double>();
+      session->history_.push_back(r);
+    }
+    session->best_point_ = checkpoint.at("best_point").get<std::vector<double>>();
+    if (!session->best_point_.empty()) session->best_terms_ = termsFromJson(checkpoint.at("best_terms"));
+    session->wall_offset_s_ = checkpoint.at("wall_s").get<double>();
+    session->publish("ready");
+    return session;
+  } catch (const nlohmann::json::exception& e) {
+    return Status::error(std::string("checkpoint: ") + e.what());
+  }
+}
+
+nlohmann::json Session::checkpoint() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  nlohmann::json history = nlohmann::json::array();
+  for (const GenerationRecord& r : history_) {
+    nlohmann::json h = {{"generation", r.generation},   {"evaluations", r.evaluations},
+                        {"wall_s", r.wall_s},           {"total", statsJson(r.total)},
+                        {"best_survived_s", r.best_survived_s},
+                        {"best_distance_m", r.best_distance_m}};
+    for (int k = 0; k < kFitnessTermCount; ++k) h[fitnessTermName(k)] = statsJson(r.terms[static_cast<size_t>(k)]);
+    history.push_back(h);
+  }
+  return {{"format", kSessionFormat},
+          {"version", kSessionVersion},
+          {"settings",
+           {{"optimizer", settings_.optimizer},
+            {"population", settings_.population},
+            {"generations", settings_.generations},
+            {"minutes", settings_.minutes},
+            {"threads", settings_.threads},
+            {"seed", settings_.seed},
+            {"initial_sigma", settings_.initial_sigma},
+            {"record_population", settings_.record_population}}},
+          {"genome_size", problem_.layout.size()},
+          {"weights", weightsJson(problem_.weights)},
+          {"optimizer", optimizer_->saveState()},
+          {"history", history},
+          {"best_point", best_point_},
+          {"best_terms", best_point_.empty() ? nlohmann::json(nullptr) : termsJson(best_terms_)},
+          {"wall_s", history_.empty() ? wall_offset_s_ : history_.back().wall_s}};
+}
+
+bool Session::finished() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int done = optimizer_->generation();
+  const bool generations_spent = settings_.generations > 0 && done >= settings_.generations;
+  const double wall = history_.empty() ? wall_offset_s_ : history_.back().wall_s;
+  const bool time_spent = settings_.minutes > 0.0 && wall >= settings_.minutes * 60.0;
+  return generations_spent || time_spent || optimizer_->converged();
+}
+
+bool Session::runGeneration() {
+  if (finished()) return false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (weights_changed_) {
+      problem_.weights = pending_weights_;
+      weights_changed_ = false;
+    }
+  }
+  if (started_at_ == 0.0) started_at_ = now();
+  const std::vector<std::vector<double>> points = optimizer_->ask();
+  const int threads = settings_.threads > 0 ? settings_.threads : hardwareThreads();
+  std::vector<Evaluation> results =
+      evaluateAll(problem_, points, threads, &cancel_, settings_.record_population);
+  for (const Evaluation& e : results)
+    if (e.cancelled) return false;  // abandoned: the same points are asked again later
+
+  std::vector<double> costs(results.size());
+  for (size_t i = 0; i < results.size(); ++i) costs[i] = results[i].terms.total;
+  GenerationRecord record;
+  record.total = {std::numeric_limits<double>::infinity(), 0.0, -std::numeric_limits<double>::infinity()};
+  for (TermStats& t : record.terms) t = record.total;
+  size_t best = 0, finite = 0;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const FitnessTerms& t = results[i].terms;
+    if (!std::isfinite(t.total)) continue;
+    ++finite;
+    if (!std::isfinite(costs[best]) || t.total < costs[best]) best = i;
+    auto add = [](TermStats& s, double v) {
+      s.best = std::min(s.best, v);
+      s.worst = std::max(s.worst, v);
+      s.mean += v;
+    };
+    add(record.total, t.total);
+    for (int k = 0; k < kFitnessTermCount; ++k) add(record.terms[static_cast<size_t>(k)], fitnessTerm(t, k));
+  }
+  if (finite > 0) {
+    record.total.mean /= static_cast<double>(finite);
+    for (TermStats& s : record.terms) s.mean /= static_cast<double>(finite);
+  }
+  record.best_survived_s = results[best].terms.survived_s;
+  record.best_distance_m = results[best].terms.distance_m;
+
+  Status told = optimizer_->tell(costs);
+  if (!told.ok()) return false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    record.generation = optimizer_->generation();
+    record.evaluations = optimizer_->evaluations();
+    record.wall_s = wall_offset_s_ + (now() - started_at_);
+    history_.push_back(record);
+    if (std::isfinite(costs[best]) && (best_point_.empty() || costs[best] < best_terms_.total)) {
+      best_point_ = points[best];
+      best_terms_ = results[best].terms;
+    }
+  }
+  auto snap = std::make_shared<Snapshot>();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    snap->generation = optimizer_->generation();
+    snap->evaluations = optimizer_->evaluations();
+    snap->history = history_;
+    snap->best_point = best_point_;
+    snap->best_terms = best_terms_;
+    snap->population = points;
+    for (Evaluation& e : results) {
+      snap->population_terms.push_back(e.terms);
+      if (settings_.record_population) snap->population_motions.push_back(std::move(e.report.motion));
+    }
+    snap->state = running_ ? "running" : "ready";
+    snapshot_ = std::move(snap);
+  }
+  return true;
+}
+
+void Session::publish(const std::string& state) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto snap = snapshot_ ? std::make_shared<Snapshot>(*snapshot_) : std::make_shared<Snapshot>();
+  if (!snapshot_) {
+    snap->generation = optimizer_->generation();
+    snap->evaluations = optimizer_->evaluations();
+    snap->history = history_;
+    snap->best_point = best_point_;
+    snap->best_terms = best_terms_;
+  }
+  snap->state = state;
+  snapshot_ = std::move(snap);
+}
+
+std::shared_ptr<const Snapshot> Session::snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return snapshot_;
+}
+
+void Session::setWeights(const FitnessWeights& weights) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  pending_weights_ = weights;
+  weights_changed_ = true;
+}
+
+void Session::workerLoop() {
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return !paused_ || stopping_; });
+      if (stopping_) break;
+    }
+    if (runGeneration()) continue;
+    if (finished()) break;  // budget spent or converged
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_) break;
+    // Cancelled by pause(): the abandoned generation runs again on resume().
+    if (!paused_) cancel_ = false;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  running_ = false;
+}
+
+void Session::start() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (running_ || worker_.joinable()) return;
+  running_ = true;
+  stopping_ = false;
+  paused_ = false;
+  cancel_ = false;
+  worker_ = std::thread([this] {
+    publish("running");
+    workerLoop();
+    bool stopped = false;
+    {
+      std::lock_guard<std::mutex> guard(mutex_);
+      stopped = stopping_;
+    }
+    publish(stopped ? "stopped" : "finished");
+  });
+}
+
+void Session::pause() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!running_) return;
+    paused_ = true;
+    cancel_ = true;
+  }
+  publish("paused");
+}
+
+void Session::resume() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!paused_) return;
+    paused_ = false;
+    cancel_ = false;
+  }
+  wake_.notify_all();
+  publish("running");
+}
+
+void Session::stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+    cancel_ = true;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  cancel_ = false;
+}
+
+void Session::wait() {
+  if (worker_.joinable()) worker_.join();
+}
+
+}  // namespace sinew::search
