@@ -12,6 +12,7 @@ namespace sinew::search {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kAmplitudeFloor = 1e-4;  // radians: below it a geometric range collapses
 const char* const kGainNames[5] = {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal",
                                    "torso"};
 const char* const kAxes = "xyz";
@@ -88,8 +89,14 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
         add(Kind::kAmplitude, ci, ti, -1, 0.0, 0.5, 0.0, base + ".B" + n);
         add(Kind::kPhase, ci, ti, -1, -kPi, kPi, 0.0, base + ".D" + n);
       } else {
-        add(Kind::kAmplitude, ci, ti, -1, h.amplitude / settings.amplitude_factor,
-            h.amplitude * settings.amplitude_factor, h.amplitude, base + ".B" + n);
+        if (h.amplitude >= kAmplitudeFloor) {
+          add(Kind::kAmplitude, ci, ti, -1, h.amplitude / settings.amplitude_factor,
+              h.amplitude * settings.amplitude_factor, h.amplitude, base + ".B" + n);
+          g.genes_.back().geometric = true;
+        } else {
+          add(Kind::kAmplitude, ci, ti, -1, 0.0, kAmplitudeFloor * settings.amplitude_factor,
+              h.amplitude, base + ".B" + n);
+        }
         add(Kind::kPhase, ci, ti, -1, h.phase - settings.phase_range_rad,
             h.phase + settings.phase_range_rad, h.phase, base + ".D" + n);
       }
@@ -112,7 +119,7 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
 
 double GenomeLayout::value(size_t i, double x) const {
   x = std::clamp(x, 0.0, 1.0);
-  if (genes_[i].kind == Kind::kAmplitude && !settings_.no_prior) {
+  if (genes_[i].geometric) {
     // Geometric: x = 0.5 is the prior, each end a factor away.
     return prior_[i] * std::pow(settings_.amplitude_factor, 2.0 * x - 1.0);
   }
@@ -123,8 +130,8 @@ double GenomeLayout::value(size_t i, double x) const {
 
 double GenomeLayout::coordinate(size_t i, double v) const {
   double x = 0.5;
-  if (genes_[i].kind == Kind::kAmplitude && !settings_.no_prior) {
-    x = prior_[i] > 0.0 && v > 0.0
+  if (genes_[i].geometric) {
+    x = v > 0.0
             ? 0.5 * (1.0 + std::log(v / prior_[i]) / std::log(settings_.amplitude_factor))
             : 0.0;
   } else if (genes_[i].kind == Kind::kOmega && settings_.no_prior) {

@@ -6,7 +6,8 @@
 // link's chain, or the base's), in the seed target's channel order: the offset A, then (B_n, D_n)
 // for each kept harmonic; then omega_0; then the five balance gains. Coordinate x in [0, 1] maps
 //   A     = A0 + (2x - 1) offset_range_rad
-//   B     = B0 * amplitude_factor^(2x - 1)              (x = 0.5: B0; never negative)
+//   B     = B0 * amplitude_factor^(2x - 1)              (x = 0.5: B0; never negative; a prior
+//           below 1e-4 rad gets the linear range [0, 1e-4 amplitude_factor] instead)
 //   D     = D0 + (2x - 1) phase_range_rad
 //   omega = omega0 * (1 + (2x - 1) omega_range)
 //   gains = lo + x (hi - lo)  (cd, cv in [-gain_range, gain_range]; torso in [0, 1])
@@ -68,6 +69,7 @@ class GenomeLayout {
     int channel = -1;  // index into target channels (coefficients)
     int term = -1;     // index into that channel's terms
     int gain = -1;     // 0..4: cd_s, cv_s, cd_c, cv_c, torso
+    bool geometric = false;  // amplitude range by factors of the prior (not for zero priors)
   };
   double value(size_t i, double x) const;
   double coordinate(size_t i, double v) const;

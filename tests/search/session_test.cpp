@@ -1,0 +1,226 @@
+// The search over simulated characters: the genome around the DFT prior, determinism across
+// thread counts, stop latency, pause and checkpoint-resume equal to an uninterrupted run, and the
+// outcome on the creatures and the default biped.
+#include "sinew/search/session.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "physics/physics_test_util.h"
+#include "sinew/search/problem.h"
+
+namespace sinew::search {
+namespace {
+
+Problem makeProblem(const physics::test_util::Character& c, double window_s,
+                    bool no_prior = false) {
+  physics::SimulationSettings simulation;
+  simulation.seconds = window_s;
+  GenomeSettings genome;
+  genome.no_prior = no_prior;
+  Result<Problem> p = Problem::create(c.plan, c.asset.skeleton, c.target, genome, simulation);
+  EXPECT_TRUE(p.ok()) << p.message();
+  return std::move(p).value();
+}
+
+TEST(SearchGenome, ThePriorPointIsTheAnalysedMotion) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const Problem p = makeProblem(biped, 2.0);
+  const GenomeLayout& layout = p.layout;
+  std::printf("biped genome: %d coordinates (%s ... %s)\n", layout.size(),
+              layout.names().front().c_str(), layout.names().back().c_str());
+  EXPECT_GT(layout.size(), 300);
+  const std::vector<double> x = layout.startPoint(1);
+  int at_centre = 0;
+  for (double v : x) at_centre += std::abs(v - 0.5) < 1e-12 ? 1 : 0;
+  // The rest are harmonics of (nearly) still joints below 1e-4 rad, at the bottom of their linear
+  // range; the decode below proves every coordinate gives the prior back.
+  std::printf("%d of %d prior coordinates at the centre of their range\n", at_centre, layout.size());
+  EXPECT_GT(at_centre, layout.size() * 3 / 4);
+  const spectral::TargetMotion decoded = layout.decodeTarget(x);
+  EXPECT_NEAR(decoded.omega0, biped.target.omega0, 1e-12);
+  for (size_t c = 0; c < decoded.channels.size(); ++c) {
+    EXPECT_NEAR(decoded.channels[c].mean, biped.target.channels[c].mean, 1e-12);
+    for (size_t t = 0; t < decoded.channels[c].terms.size(); ++t) {
+      EXPECT_NEAR(decoded.channels[c].terms[t].amplitude, biped.target.channels[c].terms[t].amplitude, 1e-12);
+      EXPECT_NEAR(decoded.channels[c].terms[t].phase, biped.target.channels[c].terms[t].phase, 1e-12);
+    }
+  }
+  const physics::BalanceGains gains = layout.decodeGains(x);
+  EXPECT_DOUBLE_EQ(gains.torso, physics::BalanceGains{}.torso);
+  // A point decodes and encodes back; the ends of the ranges are where the header says.
+  std::vector<double> y(x.size());
+  for (size_t i = 0; i < y.size(); ++i) y[i] = std::fmod(0.37 * static_cast<double>(i), 1.0);
+  const std::vector<double> back = layout.encode(layout.decodeTarget(y), layout.decodeGains(y));
+  for (size_t i = 0; i < y.size(); ++i) ASSERT_NEAR(back[i], y[i], 1e-9) << layout.names()[i];
+  std::vector<double> top(x.size(), 1.0);
+  EXPECT_NEAR(layout.decodeTarget(top).omega0, 1.2 * biped.target.omega0, 1e-12);
+  // Without a prior the start is random and the rest pose replaces the clip's mean rotations.
+  const Problem blind = makeProblem(biped, 2.0, true);
+  const std::vector<double> r = blind.layout.startPoint(7);
+  EXPECT_NE(r, blind.layout.startPoint(8));
+  EXPECT_EQ(r, blind.layout.startPoint(7));
+}
+
+EvolveSettings small(int threads, int generations = 2) {
+  EvolveSettings s;
+  s.population = 6;
+  s.generations = generations;
+  s.threads = threads;
+  s.seed = 3;
+  return s;
+}
+
+TEST(SearchSession, SameSeedSameBestOnOneAndTwoThreads) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  std::vector<double> best[2];
+  double cost[2] = {0.0, 0.0};
+  for (int threads = 1; threads <= 2; ++threads) {
+    auto session = Session::create(makeProblem(biped, 1.5), small(threads)).value();
+    while (session->runGeneration()) {
+    }
+    const auto snap = session->snapshot();
+    best[threads - 1] = snap->best_point;
+    cost[threads - 1] = snap->best_terms.total;
+    EXPECT_EQ(snap->generation, 2);
+    EXPECT_EQ(snap->history.size(), 2u);
+  }
+  ASSERT_FALSE(best[0].empty());
+  EXPECT_EQ(0, std::memcmp(best[0].data(), best[1].data(), best[0].size() * sizeof(double)));
+  EXPECT_EQ(cost[0], cost[1]);
+}
+
+TEST(SearchSession, StopsWithinAHundredMillisecondsAndPausingChangesNothing) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  // Uninterrupted.
+  auto straight = Session::create(makeProblem(biped, 1.5), small(2, 3)).value();
+  straight->start();
+  straight->wait();
+  const auto expected = straight->snapshot();
+  EXPECT_EQ(expected->state, "finished");
+  // Paused twice mid-generation, then resumed.
+  auto paused = Session::create(makeProblem(biped, 1.5), small(2, 3)).value();
+  paused->start();
+  for (int i = 0; i < 2; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    paused->pause();
+    EXPECT_EQ(paused->snapshot()->state, "paused");
+    paused->resume();
+  }
+  paused->wait();
+  const auto got = paused->snapshot();
+  EXPECT_EQ(got->best_point, expected->best_point);
+  EXPECT_EQ(got->best_terms.total, expected->best_terms.total);
+  // Stop latency, with 20 s evaluations in flight.
+  auto long_run = Session::create(makeProblem(biped, 20.0), small(2, 5)).value();
+  long_run->start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto t0 = std::chrono::steady_clock::now();
+  long_run->stop();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("stop() returned after %.2f ms with 2 evaluations of 20 s in flight\n", ms);
+  EXPECT_LT(ms, 100.0);
+  EXPECT_EQ(long_run->snapshot()->state, "stopped");
+}
+
+TEST(SearchSession, CheckpointResumeEqualsAnUninterruptedRun) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  for (const char* optimizer : {"cmaes", "ga"}) {
+    EvolveSettings settings = small(2, 4);
+    settings.optimizer = optimizer;
+    auto whole = Session::create(makeProblem(biped, 1.0), settings).value();
+    while (whole->runGeneration()) {
+    }
+    EvolveSettings half = settings;
+    auto first = Session::create(makeProblem(biped, 1.0), settings).value();
+    ASSERT_TRUE(first->runGeneration());
+    ASSERT_TRUE(first->runGeneration());
+    const std::string text = first->checkpoint().dump();
+    auto second = Session::resume(makeProblem(biped, 1.0), nlohmann::json::parse(text)).value();
+    while (second->runGeneration()) {
+    }
+    EXPECT_EQ(second->snapshot()->generation, 4) << optimizer;
+    EXPECT_EQ(second->snapshot()->best_point, whole->snapshot()->best_point) << optimizer;
+    EXPECT_EQ(second->snapshot()->best_terms.total, whole->snapshot()->best_terms.total) << optimizer;
+    nlohmann::json a = second->checkpoint(), b = whole->checkpoint();
+    EXPECT_EQ(a["optimizer"], b["optimizer"]) << optimizer;
+    // A checkpoint of another search is refused, naming why.
+    nlohmann::json wrong = nlohmann::json::parse(text);
+    wrong["genome_size"] = 3;
+    Result<std::unique_ptr<Session>> refused = Session::resume(makeProblem(biped, 1.0), wrong);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("not the same search"), std::string::npos) << refused.message();
+  }
+}
+
+// The issue: on the stepper and the hopper a short run improves the fitness by a printed margin
+// within a few generations.
+TEST(SearchSession, ShortRunsImproveTheStepperAndTheHopper) {
+  for (const char* file : {"stepper_step.bvh", "hopper_hop.bvh"}) {
+    const physics::test_util::Character c = physics::test_util::loadCharacter(file);
+    ASSERT_FALSE(c.plan.links.empty());
+    EvolveSettings settings;
+    settings.generations = 6;
+    settings.seed = 1;
+    auto session = Session::create(makeProblem(c, 4.0), settings).value();
+    while (session->runGeneration()) {
+    }
+    const auto snap = session->snapshot();
+    const double first = snap->history.front().total.best;
+    const double last = snap->best_terms.total;
+    std::printf("%-18s %d coordinates: best cost %.2f in generation 1 -> %.2f after %d (%.0f%% "
+                "better), up %.1f of 4 s\n",
+                file, session->problem().layout.size(), first, last, snap->generation,
+                100.0 * (1.0 - last / first), snap->best_terms.survived_s);
+    EXPECT_LT(last, 0.9 * first) << file;
+  }
+}
+
+// The issue's outcome, on a fixed budget that stays well inside 5 minutes on 2 cores: the default
+// biped evolved from the DFT prior walks the 10 s window without falling, travels at least 5 m and
+// keeps the style (tracking error printed and bounded).
+TEST(SearchSession, TheDefaultBipedEvolvesToWalkTenSeconds) {
+#ifdef SINEW_SANITIZED
+  GTEST_SKIP() << "minutes of simulation under the sanitizers; the Release run measures it";
+#endif
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  EvolveSettings settings;
+  settings.generations = 14;
+  settings.seed = 1;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto session = Session::create(makeProblem(biped, 10.0), settings).value();
+  while (session->runGeneration()) {
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto snap = session->snapshot();
+  const FitnessTerms& best = snap->best_terms;
+  int first_walk = 0;
+  for (const GenerationRecord& r : snap->history)
+    if (first_walk == 0 && r.best_survived_s >= 10.0) first_walk = r.generation;
+  std::printf("biped, %d coordinates, %d generations (%lld evaluations) in %.0f s on %d threads: "
+              "first 10 s walk in generation %d; best walks %.1f s, %.2f m (%.2f m/s), tracking "
+              "%.2f deg RMS\n",
+              session->problem().layout.size(), snap->generation, snap->evaluations, seconds,
+              hardwareThreads(), first_walk, best.survived_s, best.distance_m, best.speed_m_s,
+              best.track_err_rad_rms * 180.0 / 3.14159265358979);
+  EXPECT_FALSE(best.fell);
+  EXPECT_GE(best.distance_m, 5.0);
+  EXPECT_LT(best.track_err_rad_rms * 180.0 / 3.14159265358979, 5.0);
+  EXPECT_LT(seconds, 300.0);
+}
+
+}  // namespace
+}  // namespace sinew::search
