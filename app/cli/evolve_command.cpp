@@ -77,7 +77,28 @@ std::string termsLine(const search::FitnessTerms& t) {
   return line;
 }
 
-int runEvolve(const EvolveArgs& args) {
+int runEvolve(EvolveArgs args) {
+  // A resumed search is the same search: the rig, motion, window and terrain come from the
+  // checkpoint's "problem" (what this command wrote there).
+  nlohmann::json checkpoint;
+  if (!args.resume.empty()) {
+    Result<std::string> text = readFile(args.resume);
+    if (!text.ok()) return fail(text.message());
+    try {
+      checkpoint = nlohmann::json::parse(text.value());
+      const nlohmann::json& problem = checkpoint.at("problem");
+      args.rig = problem.at("rig").get<std::string>();
+      args.clip = problem.at("clip").get<std::string>();
+      args.target_path = problem.at("target").get<std::string>();
+      args.animation = problem.at("animation").get<std::string>();
+      args.harmonics = problem.at("harmonics").get<int>();
+      args.window = problem.at("window_s").get<double>();
+      args.terrain = problem.at("terrain").get<std::string>();
+      args.no_prior = problem.at("no_prior").get<bool>();
+    } catch (const nlohmann::json::exception& e) {
+      return fail(args.resume + ": not a checkpoint of sinew evolve: " + e.what());
+    }
+  }
   Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
                                               args.harmonics, args.import);
   if (!loaded.ok()) return fail(loaded.message());
@@ -105,21 +126,25 @@ int runEvolve(const EvolveArgs& args) {
   settings.generations = args.generations;
   settings.minutes = args.minutes;
   if (settings.generations == 0 && settings.minutes == 0.0) settings.generations = 40;
+  if (!args.resume.empty() && (args.population > 0 || args.optimizer != "cmaes"))
+    return fail("--resume continues the search as it was: --population and --optimizer come "
+                "from the checkpoint");
   settings.threads = args.threads;
   settings.seed = args.seed;
   if (args.sigma > 0.0) settings.initial_sigma = args.sigma;
   Result<std::unique_ptr<search::Session>> made = Status::error("no session");
   if (!args.resume.empty()) {
-    Result<std::string> text = readFile(args.resume);
-    if (!text.ok()) return fail(text.message());
-    nlohmann::json checkpoint;
-    try {
-      checkpoint = nlohmann::json::parse(text.value());
-    } catch (const nlohmann::json::exception& e) {
-      return fail(args.resume + ": not valid JSON: " + e.what());
-    }
     made = search::Session::resume(std::move(problem).value(), checkpoint);
     if (!made.ok()) return fail(args.resume + ": " + made.message());
+    if (args.generations > 0 || args.minutes > 0.0) {
+      Status budget = made.value()->setBudget(args.generations, args.minutes);
+      if (!budget.ok()) return fail(budget.message());
+    }
+    if (made.value()->finished())
+      return fail(args.resume + ": the search's budget (" +
+                  std::to_string(made.value()->settings().generations) + " generations, " +
+                  std::to_string(made.value()->settings().minutes) +
+                  " minutes) is spent: give --generations or --minutes (totals) to go on");
   } else {
     made = search::Session::create(std::move(problem).value(), settings);
     if (!made.ok()) return fail(made.message());
@@ -127,18 +152,20 @@ int runEvolve(const EvolveArgs& args) {
   search::Session& session = *made.value();
   const search::EvolveSettings& used = session.settings();
   const int threads = used.threads > 0 ? used.threads : search::hardwareThreads();
-  std::printf("evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.0f s, "
-              "seed %llu%s\n",
+  char budget[64];
+  if (used.minutes > 0.0 && used.generations > 0)
+    std::snprintf(budget, sizeof budget, "%d generations or %.1f min", used.generations, used.minutes);
+  else if (used.minutes > 0.0)
+    std::snprintf(budget, sizeof budget, "%.1f min", used.minutes);
+  else
+    std::snprintf(budget, sizeof budget, "%d generations", used.generations);
+  std::printf("evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.1f "
+              "s, seed %llu%s\n",
               rig.what.c_str(), session.problem().layout.size(),
               used.optimizer == "cmaes" ? "CMA-ES" : "genetic algorithm",
               args.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
-              session.snapshot()->population.empty()
-                  ? (used.population > 0 ? used.population : 0)
-                  : static_cast<int>(session.snapshot()->population.size()),
-              used.minutes > 0.0 ? (std::to_string(used.minutes) + " min budget").c_str()
-                                 : (std::to_string(used.generations) + " generations").c_str(),
-              threads, threads == 1 ? "" : "s", args.window,
-              static_cast<unsigned long long>(used.seed),
+              session.population(), budget, threads, threads == 1 ? "" : "s",
+              session.problem().simulation.seconds, static_cast<unsigned long long>(used.seed),
               args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
   std::fflush(stdout);
 
@@ -181,7 +208,12 @@ int runEvolve(const EvolveArgs& args) {
   std::signal(SIGTERM, SIG_DFL);
 
   const auto snap = session.snapshot();
-  Status saved = writeFileAtomically(out / "checkpoint.json", session.checkpoint().dump() + "\n");
+  nlohmann::json saved_state = session.checkpoint();
+  saved_state["problem"] = {{"rig", args.rig},           {"clip", args.clip},
+                            {"target", args.target_path}, {"animation", args.animation},
+                            {"harmonics", args.harmonics}, {"window_s", args.window},
+                            {"terrain", args.terrain},     {"no_prior", args.no_prior}};
+  Status saved = writeFileAtomically(out / "checkpoint.json", saved_state.dump() + "\n");
   if (!saved.ok()) return fail(saved.message());
   saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
   if (!saved.ok()) return fail(saved.message());
@@ -259,7 +291,11 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   args->import.addTo(*command);
   command->callback([args, &exit_code]() {
     if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
-    exit_code = runEvolve(*args);
+    if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))
+      exit_code = fail("--resume continues the search as it was: the rig, clip, window and "
+                       "terrain come from the checkpoint");
+    else
+      exit_code = runEvolve(*args);
   });
 }
 

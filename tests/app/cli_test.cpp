@@ -299,5 +299,56 @@ TEST(CliTest, SimulateReportsJsonAndWritesWhatTheCharacterDid) {
   EXPECT_NE(slope.err.find("slope_deg"), std::string::npos) << slope.err;
 }
 
+// sinew evolve: the files a pipeline picks up, a controller that replays with sinew simulate, a
+// resumed run that continues the generations, and clear refusals.
+TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
+  test::TempDir dir;
+  const auto out = dir / "evolved";
+  const test::CommandResult run = test::runSinew(
+      "evolve --generations 2 --population 4 --window 1.5 --threads 2 --out " + test::quote(out));
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  EXPECT_NE(run.out.find("seeded from the DFT"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("gen   2"), std::string::npos) << run.out;
+  for (const char* name : {"best.bvh", "best.glb", "best.json", "history.csv", "checkpoint.json"})
+    EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
+  const std::string csv = test::readText(out / "history.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3) << csv;  // header + 2 generations
+  EXPECT_NE(csv.find("fall_best"), std::string::npos);
+  const nlohmann::json best = nlohmann::json::parse(test::readText(out / "best.json"));
+  EXPECT_EQ(best["format"], "sinew.controller");
+  EXPECT_TRUE(best["fitness"].contains("total"));
+  const double survived = best["fitness"]["survived_s"].get<double>();
+  // The controller replays: the same window, the same fall (or none).
+  const auto replay_json = dir / "replay.json";
+  const test::CommandResult replay =
+      test::runSinew("simulate --controller " + test::quote(out / "best.json") +
+                     " --seconds 1.5 --json " + test::quote(replay_json));
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  const nlohmann::json figures = nlohmann::json::parse(test::readText(replay_json));
+  const double replay_survived =
+      figures["fell"].get<bool>() ? figures["fall_time_s"].get<double>() : figures["seconds"].get<double>();
+  EXPECT_NEAR(replay_survived, survived, 1e-9);
+  // Resumed without a new budget: refused, saying why; with one, it continues at generation 3.
+  const test::CommandResult spent =
+      test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
+                     " --out " + test::quote(dir / "more"));
+  EXPECT_NE(spent.exit_code, 0);
+  EXPECT_NE(spent.err.find("budget"), std::string::npos) << spent.err << spent.out;
+  const test::CommandResult more =
+      test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
+                     " --generations 3 --out " + test::quote(dir / "more"));
+  ASSERT_EQ(more.exit_code, 0) << more.err << more.out;
+  EXPECT_NE(more.out.find("gen   3"), std::string::npos) << more.out;
+  EXPECT_EQ(more.out.find("gen   2"), std::string::npos) << more.out;
+
+  const test::CommandResult bad = test::runSinew("evolve --out " + test::quote(dir / "x") +
+                                                 " --controller nope.json");
+  EXPECT_NE(bad.exit_code, 0);
+  const test::CommandResult garbage_json = test::runSinew(
+      "simulate --controller " + test::quote(out / "history.csv"));
+  EXPECT_NE(garbage_json.exit_code, 0);
+  EXPECT_NE(garbage_json.err.find("history.csv"), std::string::npos) << garbage_json.err;
+}
+
 }  // namespace
 }  // namespace sinew

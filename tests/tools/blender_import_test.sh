@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Exports the bundled walk (and, when present, a real Bandai capture and the Fox) with
-# `sinew convert` and imports them in Blender: BVH with the same bone and frame counts, glTF
+# `sinew convert`, and the best motion of a short `sinew evolve`, and imports them in Blender: BVH with the same bone and frame counts, glTF
 # with the same bone count (Blender keys glTF at its own scene rate, so frames are not compared).
 # Skips (exit 77) without Blender.
 set -euo pipefail
@@ -15,6 +15,11 @@ specs=()
 "$sinew" convert "$source_dir/assets/biped_walk.bvh" "$work/walk.bvh" >/dev/null
 "$sinew" convert "$source_dir/assets/biped_walk.bvh" "$work/walk.glb" >/dev/null
 specs+=("$work/walk.bvh:22:129" "$work/walk.glb:22:0")
+# What the search evolves: two short generations are enough to have a best motion to export
+# (a 2 s window at 30 fps: 61 frames, or fewer if the best one fell and stopped early).
+"$sinew" evolve --generations 2 --population 4 --window 2 --out "$work/evolved" >/dev/null
+frames=$("$sinew" info --json "$work/evolved/best.bvh" | python3 -c 'import json,sys; print(json.load(sys.stdin)["frames"])')
+specs+=("$work/evolved/best.bvh:22:$frames" "$work/evolved/best.glb:22:0")
 bandai="$shared/bvh/bandai_dataset-1_walk_normal_001.bvh"
 if [ -f "$bandai" ]; then
   "$sinew" convert "$bandai" "$work/bandai.bvh" >/dev/null

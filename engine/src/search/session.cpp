@@ -203,6 +203,11 @@ nlohmann::json Session::checkpoint() const {
           {"wall_s", history_.empty() ? wall_offset_s_ : history_.back().wall_s}};
 }
 
+int Session::population() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return optimizer_->population();
+}
+
 bool Session::finished() const {
   std::lock_guard<std::mutex> lock(mutex_);
   const int done = optimizer_->generation();
@@ -304,6 +309,16 @@ void Session::publish(const std::string& state) {
 std::shared_ptr<const Snapshot> Session::snapshot() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return snapshot_;
+}
+
+Status Session::setBudget(int generations, double minutes) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  EvolveSettings changed = settings_;
+  changed.generations = generations;
+  changed.minutes = minutes;
+  if (Status s = changed.validate(); !s.ok()) return s;
+  settings_ = changed;
+  return Status();
 }
 
 void Session::setWeights(const FitnessWeights& weights) {

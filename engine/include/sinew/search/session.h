@@ -91,11 +91,14 @@ class Session {
   bool runGeneration();
 
   void setWeights(const FitnessWeights& weights);  // from the next generation
+  // A new budget (a resumed search going on): total generations and minutes, as in the settings.
+  Status setBudget(int generations, double minutes);
   std::shared_ptr<const Snapshot> snapshot() const;
   nlohmann::json checkpoint() const;
   const Problem& problem() const { return problem_; }
   const EvolveSettings& settings() const { return settings_; }
   bool finished() const;  // budget spent or converged
+  int population() const;  // individuals in the current generation
 
  private:
   Session(Problem problem, const EvolveSettings& settings);
