@@ -157,6 +157,14 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   double error_sum = 0.0;
   long long error_count = 0;
   std::vector<char> pushed(settings.pushes.size(), 0);
+  std::unique_ptr<FourierTargets> reference;
+  std::vector<glm::dquat> reference_pose(joints);
+  LinkPose reference_links;
+  if (settings.reference != nullptr) {
+    if (Status s = settings.reference->validate(skeleton); !s.ok())
+      return Status::error("reference motion: " + s.message());
+    reference = std::make_unique<FourierTargets>(*settings.reference);
+  }
   record();
   next_record += record_every;
   long long step = 0;
@@ -181,7 +189,13 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
 
     // Tracking error against the motion's target, energy and torques.
     const LinkPose now = world.jointPositions();
-    const LinkPose& wanted = controller.motionTarget();
+    const LinkPose* wanted_pose = &controller.motionTarget();
+    if (reference) {
+      reference->evaluate(world.time(), reference_pose);
+      reference_links = linkPoseFromSkeleton(plan, skeleton, reference_pose, reference_translations);
+      wanted_pose = &reference_links;
+    }
+    const LinkPose& wanted = *wanted_pose;
     world.servoTorques(torques);
     world.jointVelocities(velocities);
     for (size_t li = 1; li < n; ++li) {

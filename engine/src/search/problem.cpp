@@ -309,6 +309,7 @@ Evaluation evaluate(const Problem& problem, std::span<const double> x,
   physics::SimulationSettings settings = problem.simulation;
   settings.tracking.balance = problem.layout.decodeGains(x);
   settings.cancel = cancel;
+  settings.reference = &problem.seed;  // the style to keep, whatever the genome tracks
   if (!record) settings.record_fps = std::min(settings.record_fps, 5.0);
   const spectral::TargetMotion target = problem.layout.decodeTarget(x);
   Result<physics::SimulationReport> run =

@@ -38,6 +38,10 @@ struct SimulationSettings {
   double fall_height_ratio = 0.5;  // fallen when the centre of mass drops below this share of
                                    // its starting height above the ground, (0, 1)
   bool stop_at_fall = true;   // end the run when the character falls
+  const spectral::TargetMotion* reference = nullptr;  // when set, track_err_rad_rms is measured
+                                                     // against this motion (the style the search
+                                                     // must keep), not the one the controller
+                                                     // tracks; same skeleton, not owned
   const std::atomic<bool>* cancel = nullptr;  // when set and true, the run ends at the next step
                                               // (SimulationReport::cancelled): how a search stops
                                               // within its latency budget mid-evaluation
@@ -61,7 +65,7 @@ struct SimulationReport {
   double speed_m_s = 0.0;     // distance / seconds
   double track_err_rad_rms = 0.0;  // RMS over steps and actuated joints of the angle between each
                                    // joint's rotation and the motion's target (before balance
-                                   // feedback), radians
+                                   // feedback; or SimulationSettings::reference's), radians
   double energy_j = 0.0;           // mechanical work of the joint torques, integral of sum |tau w|
   double torque_sq_per_kg = 0.0;   // integral of sum tau^2 dt / mass, N^2 m^2 s / kg
   double min_uprightness = 1.0;    // lowest cosine between the pelvis's up and the world's up
