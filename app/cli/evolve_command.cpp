@@ -46,6 +46,7 @@ struct EvolveArgs {
   std::string resume;
   std::string out;
   std::string terrain = "flat";
+  std::vector<std::string> pushes;
   ImportFlags import;
 };
 
@@ -94,6 +95,7 @@ int runEvolve(EvolveArgs args) {
       args.harmonics = problem.at("harmonics").get<int>();
       args.window = problem.at("window_s").get<double>();
       args.terrain = problem.at("terrain").get<std::string>();
+      args.pushes = problem.at("pushes").get<std::vector<std::string>>();
       args.no_prior = problem.at("no_prior").get<bool>();
     } catch (const nlohmann::json::exception& e) {
       return fail(args.resume + ": not a checkpoint of sinew evolve: " + e.what());
@@ -109,6 +111,12 @@ int runEvolve(EvolveArgs args) {
   physics::SimulationSettings simulation;
   simulation.seconds = args.window;
   simulation.world.terrain = terrain.value();
+  for (const std::string& text : args.pushes) {
+    // Robustness: every evaluation takes the same pushes.
+    Result<physics::Push> push = parsePush(text);
+    if (!push.ok()) return fail(push.message());
+    simulation.pushes.push_back(push.value());
+  }
   search::GenomeSettings genome;
   genome.no_prior = args.no_prior;
   Result<search::Problem> problem =
@@ -212,7 +220,8 @@ int runEvolve(EvolveArgs args) {
   saved_state["problem"] = {{"rig", args.rig},           {"clip", args.clip},
                             {"target", args.target_path}, {"animation", args.animation},
                             {"harmonics", args.harmonics}, {"window_s", args.window},
-                            {"terrain", args.terrain},     {"no_prior", args.no_prior}};
+                            {"terrain", args.terrain},     {"no_prior", args.no_prior},
+                            {"pushes", args.pushes}};
   Status saved = writeFileAtomically(out / "checkpoint.json", saved_state.dump() + "\n");
   if (!saved.ok()) return fail(saved.message());
   saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
@@ -286,6 +295,9 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
                       "Initial step size in normalised units (default 0.02; the GA's mutation "
                       "scale)")
       ->check(CLI::Range(0.0, 1.0));
+  command->add_option("--push", args->pushes,
+                      "Robustness: every evaluation takes this push, TIME,X,Y,Z[,LINK] (seconds, "
+                      "N s); repeatable");
   command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
   command->add_option("--out", args->out, "Output folder")->required();
   args->import.addTo(*command);
