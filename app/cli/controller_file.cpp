@@ -138,15 +138,6 @@ Result<physics::Push> parsePush(const std::string& text) {
 
 Status saveController(const std::filesystem::path& path, const ControllerFile& c,
                       const motion::Skeleton& skeleton) {
-  const search::FitnessTerms& t = c.fitness;
-  nlohmann::json fitness;
-  for (int k = 0; k < search::kFitnessTermCount; ++k) fitness[search::fitnessTermName(k)] = search::fitnessTerm(t, k);
-  fitness["total"] = t.total;
-  fitness["survived_s"] = t.survived_s;
-  fitness["distance_m"] = t.distance_m;
-  fitness["speed_m_s"] = t.speed_m_s;
-  fitness["track_err_rad_rms"] = t.track_err_rad_rms;
-  fitness["fell"] = t.fell;
   const nlohmann::json json = {
       {"format", "sinew.controller"},
       {"version", 1},
@@ -165,7 +156,7 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
         {"seed", c.seed},
         {"optimizer", c.optimizer},
         {"no_prior", c.no_prior}}},
-      {"fitness", fitness}};
+      {"fitness", search::fitnessJson(c.fitness)}};
   return writeFileAtomically(path, json.dump(2) + "\n");
 }
 
@@ -198,6 +189,11 @@ Result<ControllerFile> loadController(const std::filesystem::path& path,
     c.seed = s.at("seed").get<std::uint64_t>();
     c.optimizer = s.at("optimizer").get<std::string>();
     c.no_prior = s.at("no_prior").get<bool>();
+    if (json.contains("fitness")) {
+      Result<search::FitnessTerms> fitness = search::fitnessFromJson(json.at("fitness"));
+      if (!fitness.ok()) return Status::error(name + ": fitness: " + fitness.message());
+      c.fitness = fitness.value();
+    }
     c.rig = json.value("rig", "");
     c.clip = json.value("clip", "");
     return c;

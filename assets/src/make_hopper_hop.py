@@ -19,7 +19,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True    # keep assets/src free of __pycache__
-from rig import (joint_offsets, mmul, mT, mvec, periodic, rotx, smooth, stance_slides,
+from rig import (main, loop_and_speed_ok, joint_offsets, mmul, mT, mvec, periodic, rotx, smooth, stance_slides,
                  two_bone, bone_rotation, vadd, vsub, write_bvh, Motion, hinge_report)
 
 # ------------------------------------------------------------------ timing
@@ -150,17 +150,10 @@ def check(path):
         (m.nframes - 1) * m.frame_time)
     print("average speed: %.2f cm/s; hop %d frames = %.4f s, %.2f cm" % (
         speed, HOP_FRAMES, HOP_FRAMES / FPS, HOP_LEN))
-    loop = m.loop_error()
-    print("loop: first vs last frame, all channels but root Z: max diff %.6f" % loop)
-    ok = ok and loop < 1e-6 and abs(speed - SPEED) < 1e-3
+    ok = loop_and_speed_ok(m, speed, SPEED) and ok
     print("RESULT:", "PASS" if ok else "FAIL")
     return ok
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--check":
-        sys.exit(0 if check(sys.argv[2]) else 1)
-    elif len(sys.argv) == 1:
-        write_bvh(sys.stdout, SKELETON, NFRAMES, FPS, pose)
-    else:
-        sys.exit(__doc__)
+    main(__doc__, check, SKELETON, NFRAMES, FPS, pose)

@@ -19,7 +19,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True    # keep assets/src free of __pycache__
-from rig import (bone_rotation, half_rotation, hinge_report, joint_offsets, mmul, mT, mvec,
+from rig import (main, loop_and_speed_ok, bone_rotation, half_rotation, hinge_report, joint_offsets, mmul, mT, mvec,
                  norm, periodic, rotx, roty, rotz, smooth, stance_slides, two_bone, vadd, vsub,
                  write_bvh, Motion)
 
@@ -206,17 +206,10 @@ def check(path):
     print("average speed: %.2f cm/s; stride %d frames = %.4f s, %.2f cm; hips height %.2f .. %.2f"
           % (speed, STRIDE_FRAMES, STRIDE_FRAMES / FPS, STRIDE_LEN,
              min(q[1] for q in rz), max(q[1] for q in rz)))
-    loop = m.loop_error()
-    print("loop: first vs last frame, all channels but root Z: max diff %.6f" % loop)
-    ok = ok and loop < 1e-6 and abs(speed - SPEED) < 1e-3
+    ok = loop_and_speed_ok(m, speed, SPEED) and ok
     print("RESULT:", "PASS" if ok else "FAIL")
     return ok
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--check":
-        sys.exit(0 if check(sys.argv[2]) else 1)
-    elif len(sys.argv) == 1:
-        write_bvh(sys.stdout, SKELETON, NFRAMES, FPS, pose)
-    else:
-        sys.exit(__doc__)
+    main(__doc__, check, SKELETON, NFRAMES, FPS, pose)

@@ -11,6 +11,7 @@ rotations from the axis-angle formula, not from the generator's matrices, so a
 sign slip in the generator shows up in --check.
 """
 import math
+import sys
 
 
 # ------------------------------------------------------------------ maths
@@ -272,3 +273,20 @@ def half_rotation(m):
         return IDENTITY
     axis = unit((m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1]))
     return _axis_rot(axis, math.degrees(angle / 2))
+
+
+def loop_and_speed_ok(m, speed, expected_speed):
+    """Prints the loop closure and says whether the loop closes and the speed is the authored one."""
+    loop = m.loop_error()
+    print("loop: first vs last frame, all channels but root Z: max diff %.6f" % loop)
+    return loop < 1e-6 and abs(speed - expected_speed) < 1e-3
+
+
+def main(doc, check, skeleton, nframes, fps, pose):
+    """The scripts' command line: no argument writes the BVH to stdout, --check FILE checks it."""
+    if len(sys.argv) == 3 and sys.argv[1] == "--check":
+        sys.exit(0 if check(sys.argv[2]) else 1)
+    elif len(sys.argv) == 1:
+        write_bvh(sys.stdout, skeleton, nframes, fps, pose)
+    else:
+        sys.exit(doc)

@@ -67,72 +67,22 @@ struct HoldResult {
   std::vector<glm::dmat4> final_transforms;  // (links)
 };
 
-// Holds `target` under PD for `seconds` from the same pose.
-inline HoldResult holdPose(const BodyPlan& plan, const LinkPose& target, double seconds,
-                           const WorldSettings& world_settings = {},
-                           const ControllerSettings& controller_settings = {}) {
+// Starts a world at `target`, lets `setup` prepare it (false: give up), then calls `step` once
+// per fixed step for `seconds`, measuring the hold.
+template <class Setup, class Step>
+HoldResult hold(const BodyPlan& plan, const LinkPose& target, double seconds,
+                const WorldSettings& world_settings, Setup setup, Step step) {
   HoldResult out;
   Result<std::unique_ptr<World>> created = World::create(plan, target, world_settings);
   EXPECT_TRUE(created.ok()) << created.message();
   if (!created.ok()) return out;
   World& world = *created.value();
-  Result<PdController> controller = PdController::create(world, controller_settings);
-  EXPECT_TRUE(controller.ok()) << controller.message();
-  if (!controller.ok()) return out;
-  const size_t dofs = static_cast<size_t>(world.dofCount());
-  std::vector<double> torques(dofs, 0.0);
+  if (!setup(world)) return out;
   out.start_height = world.jointPositions().base_position.y;
   out.min_height = out.start_height;
   const long long steps = std::llround(seconds * world_settings.step_hz);
   for (long long s = 0; s < steps; ++s) {
-    controller.value().computeTorques(world, target, torques);
-    world.step(torques);
-    if (!world.finite()) {
-      out.finite = false;
-      break;
-    }
-    const LinkPose now = world.jointPositions();
-    out.min_height = std::min(out.min_height, now.base_position.y);
-    if (out.fall_time < 0.0 && now.base_position.y < 0.7 * out.start_height)
-      out.fall_time = world.time();
-    out.max_joint_speed = std::max(out.max_joint_speed, world.maxJointSpeed());
-    if (s >= steps / 2) {
-      for (size_t li = 1; li < plan.links.size(); ++li) {
-        double e = 0.0;
-        if (plan.links[li].type == JointType::kBall)
-          e = glm::length(rotationVectorOf(glm::inverse(now.rotations[li]) * target.rotations[li]));
-        else if (plan.links[li].type == JointType::kHinge)
-          e = std::abs(now.angles[li] - target.angles[li]);
-        out.max_joint_error = std::max(out.max_joint_error, e);
-      }
-    }
-  }
-  out.loads = world.externalLoads();
-  out.final_transforms.resize(plan.links.size());
-  world.linkTransforms(out.final_transforms);
-  return out;
-}
-
-// Holds `target` with the joint servos (default tracking limits and rate) for `seconds`.
-inline HoldResult holdWithServos(const BodyPlan& plan, const LinkPose& target, double seconds,
-                                 const WorldSettings& world_settings = {}) {
-  HoldResult out;
-  Result<std::unique_ptr<World>> created = World::create(plan, target, world_settings);
-  EXPECT_TRUE(created.ok()) << created.message();
-  if (!created.ok()) return out;
-  World& world = *created.value();
-  const TrackingSettings defaults;
-  Status enabled = world.enableServos(
-      jointTorqueLimits(plan, defaults.support_torque_scale, defaults.limb_torque_scale, 9.81),
-      defaults.servo_rate);
-  EXPECT_TRUE(enabled.ok()) << enabled.message();
-  world.setServoTargets(target);
-  std::vector<double> zero(static_cast<size_t>(world.dofCount()), 0.0);
-  out.start_height = world.jointPositions().base_position.y;
-  out.min_height = out.start_height;
-  const long long steps = std::llround(seconds * world_settings.step_hz);
-  for (long long s = 0; s < steps; ++s) {
-    world.step(zero);
+    step(world);
     if (!world.finite()) {
       out.finite = false;
       break;
@@ -158,6 +108,45 @@ inline HoldResult holdWithServos(const BodyPlan& plan, const LinkPose& target, d
   out.final_transforms.resize(plan.links.size());
   world.linkTransforms(out.final_transforms);
   return out;
+}
+
+// Holds `target` under explicit PD for `seconds` from the same pose.
+inline HoldResult holdPose(const BodyPlan& plan, const LinkPose& target, double seconds,
+                           const WorldSettings& world_settings = {},
+                           const ControllerSettings& controller_settings = {}) {
+  std::unique_ptr<PdController> controller;
+  std::vector<double> torques(static_cast<size_t>(plan.dofCount()), 0.0);
+  return hold(
+      plan, target, seconds, world_settings,
+      [&](World& world) {
+        Result<PdController> made = PdController::create(world, controller_settings);
+        EXPECT_TRUE(made.ok()) << made.message();
+        if (!made.ok()) return false;
+        controller = std::make_unique<PdController>(std::move(made).value());
+        return true;
+      },
+      [&](World& world) {
+        controller->computeTorques(world, target, torques);
+        world.step(torques);
+      });
+}
+
+// Holds `target` with the joint servos (default tracking limits and rate) for `seconds`.
+inline HoldResult holdWithServos(const BodyPlan& plan, const LinkPose& target, double seconds,
+                                 const WorldSettings& world_settings = {}) {
+  std::vector<double> zero(static_cast<size_t>(plan.dofCount()), 0.0);
+  return hold(
+      plan, target, seconds, world_settings,
+      [&](World& world) {
+        const TrackingSettings defaults;
+        Status enabled = world.enableServos(
+            jointTorqueLimits(plan, defaults.support_torque_scale, defaults.limb_torque_scale, 9.81),
+            defaults.servo_rate);
+        EXPECT_TRUE(enabled.ok()) << enabled.message();
+        world.setServoTargets(target);
+        return enabled.ok();
+      },
+      [&](World& world) { world.step(zero); });
 }
 
 }  // namespace sinew::physics::test_util

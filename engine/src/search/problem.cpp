@@ -5,6 +5,8 @@
 #include <numbers>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "sinew/physics/tracking.h"
 #include "sinew/search/random.h"
 
@@ -246,6 +248,36 @@ double fitnessTerm(const FitnessTerms& t, int term) {
       return t.energy;
     default:
       return 0.0;
+  }
+}
+
+nlohmann::json fitnessJson(const FitnessTerms& t) {
+  nlohmann::json j;
+  for (int k = 0; k < kFitnessTermCount; ++k) j[fitnessTermName(k)] = fitnessTerm(t, k);
+  j["total"] = t.total;
+  j["survived_s"] = t.survived_s;
+  j["distance_m"] = t.distance_m;
+  j["speed_m_s"] = t.speed_m_s;
+  j["track_err_rad_rms"] = t.track_err_rad_rms;
+  j["fell"] = t.fell;
+  return j;
+}
+
+Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j) {
+  try {
+    FitnessTerms t;
+    double* terms[kFitnessTermCount] = {&t.fall,      &t.tracking, &t.speed, &t.heading,
+                                        &t.placement, &t.upright,  &t.energy};
+    for (int k = 0; k < kFitnessTermCount; ++k) *terms[k] = j.at(fitnessTermName(k)).get<double>();
+    t.total = j.at("total").get<double>();
+    t.survived_s = j.at("survived_s").get<double>();
+    t.distance_m = j.at("distance_m").get<double>();
+    t.speed_m_s = j.at("speed_m_s").get<double>();
+    t.track_err_rad_rms = j.at("track_err_rad_rms").get<double>();
+    t.fell = j.at("fell").get<bool>();
+    return t;
+  } catch (const nlohmann::json::exception& e) {
+    return Status::error(e.what());
   }
 }
 

@@ -22,36 +22,6 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-nlohmann::json termsJson(const FitnessTerms& t) {
-  nlohmann::json j;
-  for (int k = 0; k < kFitnessTermCount; ++k) j[fitnessTermName(k)] = fitnessTerm(t, k);
-  j["total"] = t.total;
-  j["survived_s"] = t.survived_s;
-  j["distance_m"] = t.distance_m;
-  j["speed_m_s"] = t.speed_m_s;
-  j["track_err_rad_rms"] = t.track_err_rad_rms;
-  j["fell"] = t.fell;
-  return j;
-}
-
-FitnessTerms termsFromJson(const nlohmann::json& j) {
-  FitnessTerms t;
-  t.fall = j.at("fall").get<double>();
-  t.tracking = j.at("tracking").get<double>();
-  t.speed = j.at("speed").get<double>();
-  t.heading = j.at("heading").get<double>();
-  t.placement = j.at("placement").get<double>();
-  t.upright = j.at("upright").get<double>();
-  t.energy = j.at("energy").get<double>();
-  t.total = j.at("total").get<double>();
-  t.survived_s = j.at("survived_s").get<double>();
-  t.distance_m = j.at("distance_m").get<double>();
-  t.speed_m_s = j.at("speed_m_s").get<double>();
-  t.track_err_rad_rms = j.at("track_err_rad_rms").get<double>();
-  t.fell = j.at("fell").get<bool>();
-  return t;
-}
-
 nlohmann::json statsJson(const TermStats& s) { return {s.best, s.mean, s.worst}; }
 TermStats statsFromJson(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
@@ -163,7 +133,11 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem, const nlohmann
       session->history_.push_back(r);
     }
     session->best_point_ = checkpoint.at("best_point").get<std::vector<double>>();
-    if (!session->best_point_.empty()) session->best_terms_ = termsFromJson(checkpoint.at("best_terms"));
+    if (!session->best_point_.empty()) {
+      Result<FitnessTerms> terms = fitnessFromJson(checkpoint.at("best_terms"));
+      if (!terms.ok()) return Status::error("checkpoint: best_terms: " + terms.message());
+      session->best_terms_ = terms.value();
+    }
     session->wall_offset_s_ = checkpoint.at("wall_s").get<double>();
     session->publish("ready");
     return session;
@@ -199,7 +173,7 @@ nlohmann::json Session::checkpoint() const {
           {"optimizer", optimizer_->saveState()},
           {"history", history},
           {"best_point", best_point_},
-          {"best_terms", best_point_.empty() ? nlohmann::json(nullptr) : termsJson(best_terms_)},
+          {"best_terms", best_point_.empty() ? nlohmann::json(nullptr) : fitnessJson(best_terms_)},
           {"wall_s", history_.empty() ? wall_offset_s_ : history_.back().wall_s}};
 }
 

@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "sinew/core/status.h"
 #include "sinew/motion/clip.h"
 #include "sinew/motion/skeleton.h"
@@ -107,6 +109,10 @@ struct FitnessTerms {
 inline constexpr int kFitnessTermCount = 7;
 const char* fitnessTermName(int term);            // "fall", "tracking", ...
 double fitnessTerm(const FitnessTerms& t, int term);
+// {"fall": ..., ..., "total", "survived_s", "distance_m", "speed_m_s", "track_err_rad_rms",
+// "fell"}: as checkpoints and best.json carry them.
+nlohmann::json fitnessJson(const FitnessTerms& t);
+Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j);
 
 // Everything an evaluation needs; built once per search.
 struct Problem {
