@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
-#include "sinew/search/problem.h"
+#include "sinew/search/controller_io.h"
 #include "sinew/spectral/target_motion.h"
 
 namespace sinew::app {
@@ -30,24 +30,5 @@ Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::strin
 Result<physics::TerrainSettings> parseTerrain(const std::string& text);
 // "TIME,X,Y,Z[,LINK]".
 Result<physics::Push> parsePush(const std::string& text);
-
-// An evolved controller: the coefficients (spectral target JSON), the balance gains and how it
-// was made. Format "sinew.controller", version 1.
-struct ControllerFile {
-  spectral::TargetMotion target;
-  physics::BalanceGains balance;
-  double window_s = 10.0;
-  std::string terrain = "flat";
-  std::uint64_t seed = 1;
-  std::string optimizer;
-  bool no_prior = false;
-  search::FitnessTerms fitness;
-  std::string rig;
-  std::string clip;
-};
-Status saveController(const std::filesystem::path& path, const ControllerFile& controller,
-                      const motion::Skeleton& skeleton);
-Result<ControllerFile> loadController(const std::filesystem::path& path,
-                                      const motion::Skeleton& skeleton);
 
 }  // namespace sinew::app

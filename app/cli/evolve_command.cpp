@@ -232,25 +232,16 @@ int runEvolve(EvolveArgs args) {
     return interrupted ? 130 : 0;
   }
   // The best controller, replayed once more with recording, written three ways.
-  const search::Problem& p = session.problem();
-  ControllerFile controller;
-  controller.target = p.layout.decodeTarget(snap->best_point);
-  controller.balance = p.layout.decodeGains(snap->best_point);
-  controller.window_s = args.window;
-  controller.terrain = args.terrain;
-  controller.seed = used.seed;
-  controller.optimizer = used.optimizer;
-  controller.no_prior = args.no_prior;
-  controller.fitness = snap->best_terms;
-  controller.rig = args.rig;
-  controller.clip = args.clip.empty() ? args.rig : args.clip;
-  saved = saveController(out / "best.json", controller, rig.asset.skeleton);
+  search::ControllerFile meta;
+  meta.terrain = args.terrain;
+  meta.seed = used.seed;
+  meta.optimizer = used.optimizer;
+  meta.no_prior = args.no_prior;
+  meta.rig = args.rig;
+  meta.clip = args.clip.empty() ? args.rig : args.clip;
+  saved = search::exportBest(session.problem(), snap->best_point, snap->best_terms, rig.asset, out,
+                             meta);
   if (!saved.ok()) return fail(saved.message());
-  const search::Evaluation replay = search::evaluate(p, snap->best_point, nullptr, true);
-  for (const char* name : {"best.bvh", "best.glb"}) {
-    saved = motion::exportMotion(out / name, rig.asset, replay.report.motion);
-    if (!saved.ok()) return fail(saved.message());
-  }
   std::printf("best after %d generations (%lld evaluations): %s\n", snap->generation,
               snap->evaluations, termsLine(snap->best_terms).c_str());
   std::printf("wrote %s: best.bvh, best.glb, best.json, history.csv, checkpoint.json\n",

@@ -83,7 +83,7 @@ int runSimulate(const SimulateArgs& args) {
   settings.tracking.feedback = !args.no_feedback;
   if (!args.controller_path.empty()) {
     // An evolved controller: its coefficients and its balance gains.
-    Result<ControllerFile> controller = loadController(args.controller_path, skeleton);
+    Result<search::ControllerFile> controller = search::loadController(args.controller_path, skeleton);
     if (!controller.ok()) return fail(controller.message());
     rig.target = controller.value().target;
     rig.what = args.controller_path;
