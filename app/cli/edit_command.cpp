@@ -1,4 +1,5 @@
-// `sinew edit [FILE] [--animation NAME] [--screenshot OUT.png --frames N]`: the editor.
+// `sinew edit [FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot OUT.png
+// --frames N [--evolve-generations G]]`: the editor.
 #include <memory>
 
 #include "cli/commands.h"
@@ -18,6 +19,15 @@ void addEditCommand(CLI::App& app, int& exit_code) {
                       "and exit");
   command->add_option("--frames", options->frames, "Frames before the screenshot (default 30)")
       ->check(CLI::Range(1, 100000));
+  command->add_flag("--evolve", options->evolve,
+                    "Start evolving the opened clip's physical motion at once (the Evolve panel's "
+                    "Start)");
+  command->add_option("--evolve-minutes", options->evolve_minutes, "The search's budget (default 2)")
+      ->check(CLI::Range(0.1, 600.0));
+  command->add_option("--evolve-generations", options->evolve_generations,
+                      "With --screenshot and --evolve: wait for this many generations first "
+                      "(at most 2 minutes)")
+      ->check(CLI::Range(0, 10000));
   command->callback([options, &exit_code] {
     if (options->file.empty()) options->file = SINEW_ASSET_DIR "/biped_walk.bvh";
     options->shader_dir = SINEW_SHADER_DIR;

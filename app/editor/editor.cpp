@@ -38,7 +38,7 @@ struct Rect {
 // Fixed regions (ImGui 1.86 has no docking): Files over Log on the left, Spectrum on the right,
 // Timeline under the viewport, the viewport in the middle. Window coordinates.
 struct Layout {
-  Rect files, log, spectrum, timeline, viewport;
+  Rect files, log, spectrum, evolve, timeline, viewport;
 };
 
 Layout computeLayout(ImVec2 display) {
@@ -50,7 +50,9 @@ Layout computeLayout(ImVec2 display) {
   Layout l;
   l.files = {ImVec2(0, 0), ImVec2(left_w, files_h)};
   l.log = {ImVec2(0, files_h), ImVec2(left_w, display.y - files_h)};
-  l.spectrum = {ImVec2(display.x - right_w, 0), ImVec2(right_w, display.y)};
+  const float spectrum_h = std::round(display.y * 0.6f);
+  l.spectrum = {ImVec2(display.x - right_w, 0), ImVec2(right_w, spectrum_h)};
+  l.evolve = {ImVec2(display.x - right_w, spectrum_h), ImVec2(right_w, display.y - spectrum_h)};
   l.timeline = {ImVec2(left_w, display.y - timeline_h), ImVec2(centre_w, timeline_h)};
   l.viewport = {ImVec2(left_w, 0), ImVec2(centre_w, std::max(display.y - timeline_h, 1.0f))};
   return l;
@@ -240,6 +242,10 @@ int runEditor(const EditorOptions& options) {
       files_panel.animation = options.animation;
       openFile(state, options.file, options.animation);
     }
+    if (options.evolve) {
+      state.evolution.settings.minutes = options.evolve_minutes;
+      startEvolution(state);
+    }
     if (state.analysis) spectrum_panel.global_k = state.analysis->joint_k.empty() ? 5 : state.analysis->joint_k[0];
 
     using Clock = std::chrono::steady_clock;
@@ -274,6 +280,9 @@ int runEditor(const EditorOptions& options) {
       drawTimelinePanel(state);
       place(layout.spectrum);
       drawSpectrumPanel(state, spectrum_panel);
+      pollEvolution(state);
+      place(layout.evolve);
+      drawEvolvePanel(state);
       handleKeys(state);
       handleViewportMouse(camera, drag, layout.viewport);
       const Scene scene = buildScene(state);
@@ -298,7 +307,12 @@ int runEditor(const EditorOptions& options) {
       renderer.draw(rect, camera, scene, state.view.show_grid);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-      ++frame;
+      // A screenshot of a search waits for its generations (at most two minutes of wall time).
+      const bool waiting = headless && options.evolve && state.evolution.snapshot &&
+                           state.evolution.snapshot->generation < options.evolve_generations &&
+                           state.evolution.snapshot->state == "running" &&
+                           std::chrono::duration<double>(now - start).count() < 120.0;
+      if (!waiting) ++frame;
       if (headless && frame >= options.frames) {
         if (Status status = saveFramebufferPng(options.screenshot, fb_w, fb_h); !status.ok()) {
           std::cerr << "sinew edit: " << status.message() << '\n';

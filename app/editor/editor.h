@@ -11,6 +11,10 @@ struct EditorOptions {
   std::string screenshot;        // when set: render `frames` frames, save the window here, exit
   int frames = 30;               // frames rendered before the screenshot, >= 1
   std::string shader_dir;        // where the GLSL files are
+  bool evolve = false;           // start the search on the opened clip at once
+  double evolve_minutes = 2.0;   // its budget
+  int evolve_generations = 0;    // with a screenshot: frames count only once the search has
+                                 // finished this many generations (waiting at most 2 minutes)
 };
 
 // Runs until the window closes (or the screenshot is written). Returns the process exit code:

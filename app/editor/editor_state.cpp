@@ -89,7 +89,13 @@ bool openFile(EditorState& state, const std::filesystem::path& path,
     }
   }
   for (const std::string& warning : asset.warnings) state.log.warning(warning);
+  stopEvolution(state);  // its session belongs to the file being replaced
+  state.evolution.session.reset();
+  state.evolution.snapshot.reset();
+  state.evolution.reported_generation = 0;
   state.asset = std::move(asset);
+  state.file_path = path;
+  state.evolution.export_dir = (path.parent_path() / (path.stem().string() + "_evolved")).string();
   state.selected_joint = 0;
   state.frame_requested = true;
   state.file_name = path.filename().string();

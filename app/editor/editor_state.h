@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "editor/evolution.h"
 #include "sinew/motion/asset.h"
 #include "sinew/spectral/analysis.h"
 #include "sinew/spectral/target_motion.h"
@@ -71,11 +72,13 @@ struct EditorState {
   int clip_index = -1;                    // into asset->clips, -1 when nothing is loaded
   std::optional<AnalysisState> analysis;  // empty when the clip could not be analysed
   std::string file_name;                  // the loaded file's name, for titles
+  std::filesystem::path file_path;        // the loaded file
   Playback playback;
   ViewToggles view;
   int selected_joint = 0;                 // the joint the spectrum panel shows
   std::vector<std::string> recent_files;  // most recent first, at most kMaxRecentFiles
   bool frame_requested = false;           // the camera should frame the character next frame
+  EvolutionState evolution;               // the search over the loaded rig, if one ran
   Log log;
 
   // The chosen clip, or nullptr.

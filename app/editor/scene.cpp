@@ -16,6 +16,8 @@ const glm::vec4 kRightColor{0.90f, 0.58f, 0.50f, 1.0f};
 const glm::vec4 kSelectedColor{1.00f, 0.72f, 0.20f, 1.0f};
 const glm::vec4 kModelColor{0.45f, 0.95f, 0.85f, 0.5f};
 const glm::vec4 kModelSelectedColor{1.00f, 0.80f, 0.30f, 0.55f};
+const glm::vec4 kBestColor{0.55f, 1.00f, 0.45f, 0.85f};        // the population's best run
+const glm::vec4 kIndividualColor{0.72f, 0.64f, 1.00f, 0.55f};  // the others
 
 bool containsNoCase(const std::string& text, const char* word) {
   std::string lower = text;
@@ -133,10 +135,46 @@ Scene buildScene(const EditorState& state) {
                   state.selected_joint, &kModelColor, scene.translucent);
     }
   }
+  // The search's population, best first, in a row on the other side: each run replayed at the
+  // playback time (its own 10 s loop), kept beside the clip's root so the camera keeps them all.
+  // They stay out of the bounds: the camera keeps framing the clip and its model.
+  std::vector<CapsuleInstance> population;
+  const EvolutionState& evolution = state.evolution;
+  if (evolution.show_population && evolution.snapshot &&
+      !evolution.snapshot->population_motions.empty()) {
+    const search::Snapshot& snap = *evolution.snapshot;
+    std::vector<size_t> order(snap.population_motions.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return snap.population_terms[a].total < snap.population_terms[b].total;
+    });
+    const glm::dvec3 v = state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0);
+    glm::vec3 side(1.0f, 0.0f, 0.0f);
+    if (glm::length(glm::dvec2(v.x, v.z)) > 1e-3)
+      side = glm::normalize(glm::vec3(static_cast<float>(v.z), 0.0f, static_cast<float>(-v.x)));
+    const size_t shown = std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
+    std::vector<glm::dmat4> run_world(static_cast<size_t>(joints));
+    for (size_t rank = 0; rank < shown; ++rank) {
+      const motion::Clip& run = snap.population_motions[order[rank]];
+      if (run.frame_count < 1 || run.joint_count != joints) continue;
+      const double duration = std::max(run.duration(), run.frame_time);
+      const double t = std::fmod(state.playback.time_s, duration);
+      const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
+      motion::worldTransforms(skeleton, run, f, run_world);
+      // Travel removed (the run stays beside the clip), height and falls kept.
+      glm::vec3 offset = scene.root - glm::vec3(run_world[0][3]);
+      offset.y = 0.0f;
+      offset -= side * (0.5f * height * static_cast<float>(rank + 1));
+      appendBones(skeleton, run_world, offset, radius * 0.9f, false, -1,
+                  rank == 0 ? &kBestColor : &kIndividualColor, population);
+    }
+  }
+
   scene.bounds_min = glm::vec3(1e30f);
   scene.bounds_max = glm::vec3(-1e30f);
   growBounds(scene, scene.opaque);
   growBounds(scene, scene.translucent);
+  scene.translucent.insert(scene.translucent.end(), population.begin(), population.end());
   scene.empty = scene.opaque.empty() && scene.translucent.empty();
   if (scene.empty) scene.bounds_min = scene.bounds_max = scene.root;
   return scene;

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The editor under Xvfb: `screenshot` renders the bundled walk for 20 frames and checks the PNG
 # (size 1600x900, many colours, the viewport not blank); `broken` opens a truncated BVH file and
-# checks that the editor still runs, exits 0 and names the file and line in its log.
+# checks that the editor still runs, exits 0 and names the file and line in its log; `evolve`
+# starts the search from the editor, waits for two generations and checks the log reports them
+# and the population is drawn (a green best run in the viewport).
 # Usage: editor_screenshot_test.sh SINEW_BINARY WORK_DIR (screenshot|broken)
 # Exit 77 (skipped) when xvfb-run is missing.
 set -euo pipefail
@@ -81,6 +83,50 @@ PY
     grep -Eq 'error: .*broken\.bvh:[0-9]+' "$out" \
       || { echo "FAIL: the log does not name broken.bvh and a line"; exit 1; }
     test -s "$work/broken.png" || { echo "FAIL: no screenshot"; exit 1; }
+    ;;
+  evolve)
+    png="$work/editor_evolve.png"
+    out="$work/evolve.log"
+    rm -f "$png"
+    "${xvfb[@]}" "$sinew" edit --evolve --screenshot "$png" --frames 5 --evolve-generations 2 \
+      > "$out" 2>&1 || { cat "$out"; echo "FAIL: the editor exited non-zero"; exit 1; }
+    grep -E 'evolve: |generation [12] ' "$out"
+    grep -q 'generation 2 (' "$out" || { echo "FAIL: no second generation in the log"; exit 1; }
+    python3 - "$png" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], "rb").read()
+pos, idat, width = 8, b"", 0
+while pos < len(data):
+    length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    if kind == b"IHDR": width = struct.unpack(">I", data[pos + 8:pos + 12])[0]
+    elif kind == b"IDAT": idat += data[pos + 8:pos + 8 + length]
+    pos += 12 + length
+raw, stride = zlib.decompress(idat), width * 3
+# Unfiltered scan for the best run's green (filters make exact pixels uncertain: count pixels
+# of any row filter type whose bytes read as a clearly green colour).
+rows, prev = [], bytearray(stride)
+for y in range(len(raw) // (stride + 1)):
+    f = raw[y * (stride + 1)]
+    line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    for i in range(stride):
+        a = line[i - 3] if i >= 3 else 0
+        b = prev[i]
+        c = prev[i - 3] if i >= 3 else 0
+        if f == 1: line[i] = (line[i] + a) & 255
+        elif f == 2: line[i] = (line[i] + b) & 255
+        elif f == 3: line[i] = (line[i] + ((a + b) >> 1)) & 255
+        elif f == 4:
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(line)
+    prev = line
+green = sum(1 for row in rows[::2] for x in range(0, width, 2)
+            if row[3 * x + 1] > 120 and row[3 * x + 1] > row[3 * x] + 50 and row[3 * x + 1] > row[3 * x + 2] + 50)
+print(f"evolve screenshot: {green} green samples (the best run)")
+if green < 200:
+    sys.exit("FAIL: the population's best run is not drawn")
+PY
     ;;
   *)
     echo "unknown mode $mode"; exit 2 ;;

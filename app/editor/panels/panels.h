@@ -23,5 +23,6 @@ void drawFilesPanel(EditorState& state, FilesPanelState& panel);
 void drawTimelinePanel(EditorState& state);
 void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel);
 void drawLogPanel(EditorState& state);
+void drawEvolvePanel(EditorState& state);
 
 }  // namespace sinew::editor

@@ -12,7 +12,6 @@ namespace sinew::physics {
 namespace {
 
 constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
-const glm::dquat kIdentity(1.0, 0.0, 0.0, 0.0);
 
 bool isAncestorLink(const BodyPlan& plan, int ancestor, int link) {
   while (link > ancestor) link = plan.links[static_cast<size_t>(link)].parent;

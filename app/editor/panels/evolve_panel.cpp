@@ -1,0 +1,106 @@
+// Evolve: runs the search on the loaded rig from the model being edited and shows it live: the
+// budget and window, start/pause/resume/stop, the generation, the best individual's terms, the
+// best and mean cost per generation, and an export of the best (best.json/.bvh/.glb). The
+// viewport replays the population's runs beside the clip while it is shown.
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include <imgui.h>
+
+#include "editor/panels/panels.h"
+
+namespace sinew::editor {
+namespace {
+
+void inputText(const char* label, std::string& text) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof buffer, "%s", text.c_str());
+  if (ImGui::InputText(label, buffer, sizeof buffer)) text = buffer;
+}
+
+void plotHistory(const search::Snapshot& snap) {
+  std::vector<float> best;
+  for (const search::GenerationRecord& r : snap.history) best.push_back(static_cast<float>(r.total.best));
+  if (best.empty()) return;
+  const float top = *std::max_element(best.begin(), best.end());
+  char label[64];
+  std::snprintf(label, sizeof label, "best cost per generation (%.1f -> %.1f)", best.front(), best.back());
+  ImGui::TextDisabled("%s", label);
+  ImGui::PlotLines("##best", best.data(), static_cast<int>(best.size()), 0, nullptr, 0.0f,
+                   top * 1.05f, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f));
+}
+
+}  // namespace
+
+void drawEvolvePanel(EditorState& state) {
+  ImGui::Begin("Evolve", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                      ImGuiWindowFlags_NoCollapse);
+  EvolutionState& evolution = state.evolution;
+  const std::string run_state = evolution.snapshot ? evolution.snapshot->state : "";
+  const bool running = run_state == "running" || run_state == "paused";
+  if (!state.analysis) {
+    ImGui::TextDisabled("Open a clip that analyses to evolve its physical motion.");
+    ImGui::End();
+    return;
+  }
+
+  ImGui::BeginDisabled(running);
+  ImGui::SetNextItemWidth(120.0f);
+  float minutes = static_cast<float>(evolution.settings.minutes);
+  if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f")) evolution.settings.minutes = minutes;
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(100.0f);
+  float window = static_cast<float>(evolution.settings.window_s);
+  if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f")) evolution.settings.window_s = window;
+  ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
+  ImGui::EndDisabled();
+
+  if (!running) {
+    if (ImGui::Button(evolution.snapshot ? "Start again" : "Start")) startEvolution(state);
+  } else {
+    if (run_state == "paused") {
+      if (ImGui::Button("Resume")) resumeEvolution(state);
+    } else if (ImGui::Button("Pause")) {
+      pauseEvolution(state);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Stop")) stopEvolution(state);
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("show population", &evolution.show_population);
+
+  if (evolution.snapshot) {
+    const search::Snapshot& snap = *evolution.snapshot;
+    const double wall = snap.history.empty() ? 0.0 : snap.history.back().wall_s;
+    ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)", run_state.c_str(),
+                snap.generation, snap.evaluations, wall,
+                wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
+    if (!snap.best_point.empty()) {
+      const search::FitnessTerms& t = snap.best_terms;
+      ImGui::Text("best: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", t.fell ? "fell after" : "walked",
+                  t.survived_s, t.distance_m, t.speed_m_s, t.total);
+      if (ImGui::BeginTable("terms", search::kFitnessTermCount, ImGuiTableFlags_SizingStretchSame)) {
+        for (int k = 0; k < search::kFitnessTermCount; ++k) ImGui::TableSetupColumn(search::fitnessTermName(k));
+        ImGui::TableHeadersRow();
+        ImGui::TableNextRow();
+        for (int k = 0; k < search::kFitnessTermCount; ++k) {
+          ImGui::TableNextColumn();
+          ImGui::Text("%.2f", search::fitnessTerm(t, k));
+        }
+        ImGui::EndTable();
+      }
+      plotHistory(snap);
+      ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110.0f);
+      inputText("##export", evolution.export_dir);
+      ImGui::SameLine();
+      if (ImGui::Button("Export best")) exportEvolutionBest(state);
+    }
+  } else {
+    ImGui::TextWrapped("Evolves the clip's Fourier controller (seeded from the model above) until "
+                       "the simulated character keeps the style without falling.");
+  }
+  ImGui::End();
+}
+
+}  // namespace sinew::editor
