@@ -10,9 +10,62 @@
 
 namespace sinew::app {
 
+void BodyFlags::addTo(CLI::App& command) {
+  command.add_option("--mass", masses, "Override a body's mass: NAME=KG (its joint's name); repeatable");
+  command.add_option("--fixed", fixed, "Weld this joint (no motion); repeatable");
+  command.add_option("--hinge-limits", hinge_limits,
+                     "Override a hinge's range: NAME=LO,HI in degrees; repeatable");
+}
+
+Result<physics::BodyPlanSettings> BodyFlags::settings() const {
+  physics::BodyPlanSettings s;
+  auto split = [](const std::string& text, const char* flag) -> Result<std::pair<std::string, std::string>> {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+      return Status::error(std::string(flag) + " '" + text + "': expected NAME=VALUE");
+    return std::make_pair(text.substr(0, eq), text.substr(eq + 1));
+  };
+  auto number = [](const std::string& text, const std::string& whole, const char* flag) -> Result<double> {
+    try {
+      size_t used = 0;
+      const double v = std::stod(text, &used);
+      if (used != text.size()) throw std::invalid_argument(text);
+      return v;
+    } catch (const std::exception&) {
+      return Status::error(std::string(flag) + " '" + whole + "': '" + text + "' is not a number");
+    }
+  };
+  for (const std::string& m : masses) {
+    auto parts = split(m, "--mass");
+    if (!parts.ok()) return parts.status();
+    Result<double> kg = number(parts.value().second, m, "--mass");
+    if (!kg.ok()) return kg.status();
+    s.mass_overrides.emplace_back(parts.value().first, kg.value());
+  }
+  for (const std::string& f : fixed) s.type_overrides.emplace_back(f, physics::JointType::kFixed);
+  for (const std::string& h : hinge_limits) {
+    auto parts = split(h, "--hinge-limits");
+    if (!parts.ok()) return parts.status();
+    const std::string& range = parts.value().second;
+    const size_t comma = range.find(',');
+    if (comma == std::string::npos) return Status::error("--hinge-limits '" + h + "': expected NAME=LO,HI");
+    Result<double> lo = number(range.substr(0, comma), h, "--hinge-limits");
+    Result<double> hi = number(range.substr(comma + 1), h, "--hinge-limits");
+    if (!lo.ok()) return lo.status();
+    if (!hi.ok()) return hi.status();
+    constexpr double kRad = 3.14159265358979323846 / 180.0;
+    s.hinge_limit_overrides.emplace_back(parts.value().first,
+                                         std::make_pair(lo.value() * kRad, hi.value() * kRad));
+  }
+  if (Status v = s.validate(); !v.ok()) return Status::error("body overrides: " + v.message());
+  return s;
+}
+
 Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::string& clip_path,
                                    const std::string& target_path, const std::string& animation,
-                                   int harmonics, const ImportFlags& import) {
+                                   int harmonics, const ImportFlags& import, const BodyFlags& body) {
+  Result<physics::BodyPlanSettings> body_settings = body.settings();
+  if (!body_settings.ok()) return body_settings.status();
   Result<motion::ImportOptions> options = import.options();
   if (!options.ok()) return options.status();
   Result<motion::MotionAsset> rig = motion::importMotion(rig_path, options.value());
@@ -36,7 +89,7 @@ Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::strin
   if (!clip_index.ok()) return clip_index.status();
   const motion::Clip& clip = source->clips[static_cast<size_t>(clip_index.value())];
   const motion::Skeleton& skeleton = out.asset.skeleton;
-  Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, &clip);
+  Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, &clip, body_settings.value());
   if (!plan.ok()) return Status::error(rig_path + ": " + plan.message());
   out.plan = std::move(plan).value();
   if (!target_path.empty()) {

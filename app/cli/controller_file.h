@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "sinew/physics/body_plan.h"
@@ -22,9 +23,20 @@ struct LoadedRig {
   spectral::TargetMotion target;
   std::string what;  // for messages: "'walk' (K = 5)" or the coefficient file
 };
+// The body plan's overrides from the command line: --mass NAME=KG, --fixed NAME,
+// --hinge-limits NAME=LO,HI (degrees); each repeatable.
+struct BodyFlags {
+  std::vector<std::string> masses;
+  std::vector<std::string> fixed;
+  std::vector<std::string> hinge_limits;
+  void addTo(CLI::App& command);
+  Result<physics::BodyPlanSettings> settings() const;  // the message names the flag
+};
+
 Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::string& clip_path,
                                    const std::string& target_path, const std::string& animation,
-                                   int harmonics, const ImportFlags& import);
+                                   int harmonics, const ImportFlags& import,
+                                   const BodyFlags& body = {});
 
 // "flat", "slope:5", "steps:0.05,0.6", "rough:0.02,7".
 Result<physics::TerrainSettings> parseTerrain(const std::string& text);

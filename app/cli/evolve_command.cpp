@@ -48,6 +48,7 @@ struct EvolveArgs {
   std::string terrain = "flat";
   std::vector<std::string> pushes;
   ImportFlags import;
+  BodyFlags body;
 };
 
 std::string historyCsv(const search::Snapshot& snap) {
@@ -96,13 +97,16 @@ int runEvolve(EvolveArgs args) {
       args.window = problem.at("window_s").get<double>();
       args.terrain = problem.at("terrain").get<std::string>();
       args.pushes = problem.at("pushes").get<std::vector<std::string>>();
+      args.body.masses = problem.at("masses").get<std::vector<std::string>>();
+      args.body.fixed = problem.at("fixed").get<std::vector<std::string>>();
+      args.body.hinge_limits = problem.at("hinge_limits").get<std::vector<std::string>>();
       args.no_prior = problem.at("no_prior").get<bool>();
     } catch (const nlohmann::json::exception& e) {
       return fail(args.resume + ": not a checkpoint of sinew evolve: " + e.what());
     }
   }
   Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
-                                              args.harmonics, args.import);
+                                              args.harmonics, args.import, args.body);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
 
@@ -221,7 +225,8 @@ int runEvolve(EvolveArgs args) {
                             {"target", args.target_path}, {"animation", args.animation},
                             {"harmonics", args.harmonics}, {"window_s", args.window},
                             {"terrain", args.terrain},     {"no_prior", args.no_prior},
-                            {"pushes", args.pushes}};
+                            {"pushes", args.pushes},       {"masses", args.body.masses},
+                            {"fixed", args.body.fixed},    {"hinge_limits", args.body.hinge_limits}};
   Status saved = writeFileAtomically(out / "checkpoint.json", saved_state.dump() + "\n");
   if (!saved.ok()) return fail(saved.message());
   saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
@@ -292,6 +297,7 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
   command->add_option("--out", args->out, "Output folder")->required();
   args->import.addTo(*command);
+  args->body.addTo(*command);
   command->callback([args, &exit_code]() {
     if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
     if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))

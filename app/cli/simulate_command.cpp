@@ -35,6 +35,7 @@ struct SimulateArgs {
   std::string output;
   std::string json_path;
   ImportFlags import;
+  BodyFlags body;
 };
 
 nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs& args) {
@@ -70,7 +71,7 @@ int runSimulate(const SimulateArgs& args) {
   if (!args.controller_path.empty() && !args.target_path.empty())
     return fail("--controller and --target both give the coefficients: choose one");
   Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
-                                              args.harmonics, args.import);
+                                              args.harmonics, args.import, args.body);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
   const motion::Skeleton& skeleton = rig.asset.skeleton;
@@ -183,6 +184,7 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
                       "Write what the character did (.bvh, .glb, .gltf) on the rig's skeleton");
   command->add_option("--json", args->json_path, "Write the figures as JSON");
   args->import.addTo(*command);
+  args->body.addTo(*command);
   command->callback([args, &exit_code]() {
     if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
     exit_code = runSimulate(*args);

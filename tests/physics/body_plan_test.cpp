@@ -195,5 +195,40 @@ TEST(BodyPlan, CmuZeroLengthHipJointsMergeIntoThePelvis) {
   for (const Link& l : plan.links) EXPECT_EQ(l.name.find("Finger"), std::string::npos) << l.name;
 }
 
+// The user's overrides win over the rules, and a name that is not a link is refused, named.
+TEST(BodyPlan, OverridesSetMassesJointTypesAndHingeLimits) {
+  const motion::MotionAsset asset = test_util::loadAsset(sinew::test::sourceDir() / "assets" / "biped_walk.bvh");
+  ASSERT_FALSE(asset.clips.empty());
+  const BodyPlan plain = buildBodyPlan(asset.skeleton, &asset.clips[0]).value();
+  BodyPlanSettings settings;
+  settings.mass_overrides = {{"Head", 6.0}};
+  settings.type_overrides = {{"LeftArm", JointType::kFixed}};
+  settings.hinge_limit_overrides = {{"LeftLeg", {-0.1, 2.0}}};
+  const BodyPlan plan = buildBodyPlan(asset.skeleton, &asset.clips[0], settings).value();
+  auto link = [](const BodyPlan& p, const std::string& name) -> const Link& {
+    for (const Link& l : p.links)
+      if (l.name == name) return l;
+    ADD_FAILURE() << name;
+    return p.links[0];
+  };
+  EXPECT_DOUBLE_EQ(link(plan, "Head").mass_kg, 6.0);
+  EXPECT_NEAR(plan.total_mass_kg, plain.total_mass_kg + 6.0 - link(plain, "Head").mass_kg, 1e-9);
+  EXPECT_GT(link(plan, "Head").inertia.x, link(plain, "Head").inertia.x);
+  EXPECT_EQ(link(plan, "LeftArm").type, JointType::kFixed);
+  EXPECT_EQ(plan.dofCount(), plain.dofCount() - 3);
+  EXPECT_DOUBLE_EQ(link(plan, "LeftLeg").hinge_lower, -0.1);
+  EXPECT_DOUBLE_EQ(link(plan, "LeftLeg").hinge_upper, 2.0);
+  BodyPlanSettings bad;
+  bad.mass_overrides = {{"Tail", 1.0}};
+  Result<BodyPlan> refused = buildBodyPlan(asset.skeleton, &asset.clips[0], bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.message().find("mass_overrides: no link named 'Tail'"), std::string::npos)
+      << refused.message();
+  bad = {};
+  bad.hinge_limit_overrides = {{"LeftArm", {0.0, 1.0}}};
+  EXPECT_NE(buildBodyPlan(asset.skeleton, &asset.clips[0], bad).message().find("no hinge named"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace sinew::physics

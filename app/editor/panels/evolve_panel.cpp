@@ -20,12 +20,17 @@ void inputText(const char* label, std::string& text) {
 }
 
 void plotHistory(const search::Snapshot& snap) {
+  // The best so far after each generation (a generation's own best can be worse than an earlier
+  // one: CMA-ES samples afresh every generation).
   std::vector<float> best;
-  for (const search::GenerationRecord& r : snap.history) best.push_back(static_cast<float>(r.total.best));
+  for (const search::GenerationRecord& r : snap.history) {
+    const float cost = static_cast<float>(r.total.best);
+    best.push_back(best.empty() ? cost : std::min(best.back(), cost));
+  }
   if (best.empty()) return;
-  const float top = *std::max_element(best.begin(), best.end());
+  const float top = best.front();
   char label[64];
-  std::snprintf(label, sizeof label, "best cost per generation (%.1f -> %.1f)", best.front(), best.back());
+  std::snprintf(label, sizeof label, "best cost so far (%.1f -> %.2f)", best.front(), best.back());
   ImGui::TextDisabled("%s", label);
   ImGui::PlotLines("##best", best.data(), static_cast<int>(best.size()), 0, nullptr, 0.0f,
                    top * 1.05f, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f));

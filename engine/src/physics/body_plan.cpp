@@ -235,6 +235,15 @@ Status BodyPlanSettings::validate() const {
   for (const auto& [name, value] : radii)
     if (!positive(value)) return Status::error(std::string(name) + " must be > 0");
   if (Status s = mass_table.validate(); !s.ok()) return Status::error("mass_table: " + s.message());
+  for (const auto& [name, kg] : mass_overrides)
+    if (!positive(kg)) return Status::error("mass_overrides: " + name + " must be > 0 kg");
+  for (const auto& [name, type] : type_overrides)
+    if (type != JointType::kFixed && type != JointType::kBall)
+      return Status::error("type_overrides: " + name +
+                           " can be made fixed or ball (hinges come from hinge_names)");
+  for (const auto& [name, range] : hinge_limit_overrides)
+    if (!(std::isfinite(range.first) && std::isfinite(range.second) && range.first < range.second))
+      return Status::error("hinge_limit_overrides: " + name + " needs lower < upper");
   return Status();
 }
 
@@ -647,6 +656,30 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     const double k = settings.human_mass_kg / total;
     total = 0.0;
     for (Link& link : plan.links) total += (link.mass_kg *= k);
+  }
+  // The user's overrides, after the rules.
+  auto findLink = [&](const std::string& name) {
+    for (int li = 0; li < link_count; ++li)
+      if (plan.links[li].name == name) return li;
+    return -1;
+  };
+  for (const auto& [name, kg] : settings.mass_overrides) {
+    const int li = findLink(name);
+    if (li < 0) return Status::error("mass_overrides: no link named '" + name + "'");
+    total += kg - plan.links[li].mass_kg;
+    plan.links[li].mass_kg = kg;
+  }
+  for (const auto& [name, type] : settings.type_overrides) {
+    const int li = findLink(name);
+    if (li <= 0) return Status::error("type_overrides: no jointed link named '" + name + "'");
+    plan.links[li].type = type;
+  }
+  for (const auto& [name, range] : settings.hinge_limit_overrides) {
+    const int li = findLink(name);
+    if (li < 0 || plan.links[li].type != JointType::kHinge)
+      return Status::error("hinge_limit_overrides: no hinge named '" + name + "'");
+    plan.links[li].hinge_lower = range.first;
+    plan.links[li].hinge_upper = range.second;
   }
   plan.total_mass_kg = total;
 

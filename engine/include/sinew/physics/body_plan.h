@@ -102,6 +102,13 @@ struct BodyPlanSettings {
   double min_link_mass_fraction = 0.01;   // no link lighter than this share of the total (tail
                                           // tips and paws by volume would be ~1/600), [0, 0.1)
   spectral::SegmentMassTable mass_table;  // de Leva fractions
+  // Overrides, applied after the rules above, each naming a link by its pivot joint's name
+  // (exactly); a name that is not a link of the plan fails the build, naming it.
+  std::vector<std::pair<std::string, double>> mass_overrides;  // link -> kg, > 0 (inertia scales
+                                                               // with it; the total follows)
+  std::vector<std::pair<std::string, JointType>> type_overrides;  // link -> kFixed or kBall
+  std::vector<std::pair<std::string, std::pair<double, double>>> hinge_limit_overrides;  // hinge
+                                                               // link -> (lower, upper) radians
   // Capsule radius (box half width for feet) as a fraction of the rig size, per group.
   double radius_head = 0.055, radius_trunk = 0.07, radius_upper_arm = 0.025, radius_forearm = 0.022,
          radius_hand = 0.02, radius_thigh = 0.04, radius_shank = 0.03, radius_foot = 0.028,
