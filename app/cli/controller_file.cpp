@@ -61,6 +61,49 @@ Result<physics::BodyPlanSettings> BodyFlags::settings() const {
   return s;
 }
 
+Result<ProjectFile> loadProject(const std::filesystem::path& path) {
+  Result<std::string> text = readFile(path);
+  if (!text.ok()) return text.status();
+  const std::string name = path.string();
+  try {
+    const nlohmann::json json = nlohmann::json::parse(text.value());
+    if (json.value("format", "") != "sinew.project")
+      return Status::error(name + ": format: expected \"sinew.project\"");
+    if (json.value("version", 0) != 1)
+      return Status::error(name + ": version: expected 1");
+    const std::filesystem::path base = path.parent_path();
+    auto file = [&](const char* key) -> std::string {
+      const std::string value = json.value(key, "");
+      if (value.empty()) return value;
+      const std::filesystem::path p(value);
+      return (p.is_absolute() ? p : base / p).lexically_normal().string();
+    };
+    ProjectFile project;
+    if (!json.contains("rig")) return Status::error(name + ": rig: missing (the rig file)");
+    project.rig = file("rig");
+    project.clip = file("clip");
+    project.target = file("target");
+    project.animation = json.value("animation", "");
+    project.harmonics = json.value("harmonics", 5);
+    if (project.harmonics < 1 || project.harmonics > 64)
+      return Status::error(name + ": harmonics: must be 1..64");
+    project.terrain = json.value("terrain", "flat");
+    project.window_s = json.value("window_s", 10.0);
+    if (!(project.window_s >= 0.5 && project.window_s <= 600.0))
+      return Status::error(name + ": window_s: must be 0.5..600 seconds");
+    project.pushes = json.value("pushes", std::vector<std::string>{});
+    if (json.contains("body")) {
+      const nlohmann::json& body = json.at("body");
+      project.body.masses = body.value("masses", std::vector<std::string>{});
+      project.body.fixed = body.value("fixed", std::vector<std::string>{});
+      project.body.hinge_limits = body.value("hinge_limits", std::vector<std::string>{});
+    }
+    return project;
+  } catch (const nlohmann::json::exception& e) {
+    return Status::error(name + ": " + e.what());
+  }
+}
+
 Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::string& clip_path,
                                    const std::string& target_path, const std::string& animation,
                                    int harmonics, const ImportFlags& import, const BodyFlags& body) {

@@ -33,6 +33,23 @@ struct BodyFlags {
   Result<physics::BodyPlanSettings> settings() const;  // the message names the flag
 };
 
+// A project (format "sinew.project", version 1, JSON): what to evolve or simulate, so a pipeline
+// names one file. Paths inside are relative to the project file. Fields: "rig" (required),
+// "clip", "animation", "target" (coefficients .json), "harmonics" (5), "terrain" ("flat"),
+// "window_s" (10), "pushes" (["TIME,X,Y,Z[,LINK]"...]), "body": {"masses": ["NAME=KG"...],
+// "fixed": [NAME...], "hinge_limits": ["NAME=LO,HI"...]}. The bundled default project
+// (assets/default.sinew.json) is the walk the editor opens.
+struct ProjectFile {
+  std::string rig, clip, animation, target;
+  int harmonics = 5;
+  std::string terrain = "flat";
+  double window_s = 10.0;
+  std::vector<std::string> pushes;
+  BodyFlags body;
+};
+Result<ProjectFile> loadProject(const std::filesystem::path& path);
+inline constexpr const char* kDefaultProject = SINEW_ASSET_DIR "/default.sinew.json";
+
 Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::string& clip_path,
                                    const std::string& target_path, const std::string& animation,
                                    int harmonics, const ImportFlags& import,

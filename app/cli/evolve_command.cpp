@@ -29,6 +29,7 @@ std::atomic<bool> g_interrupted{false};
 extern "C" void onInterrupt(int) { g_interrupted = true; }
 
 struct EvolveArgs {
+  std::string project;
   std::string rig;
   std::string clip;
   std::string target_path;
@@ -261,7 +262,10 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "evolve", "Evolve the rig's Fourier controller (seeded from the clip's DFT) until the "
                 "simulated motion keeps the style without falling");
-  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf); default: the bundled biped");
+  command->add_option("project", args->project,
+                      "A project file (.sinew.json: rig, clip, window, terrain...); default: the "
+                      "bundled default project, the walk the editor opens");
+  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf), instead of a project");
   command->add_option("--clip", args->clip, "The motion (same skeleton); default: the rig's own");
   command->add_option("--target", args->target_path,
                       "Start from these coefficients (.json from sinew style) instead of the clip's");
@@ -298,8 +302,33 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command->add_option("--out", args->out, "Output folder")->required();
   args->import.addTo(*command);
   args->body.addTo(*command);
-  command->callback([args, &exit_code]() {
-    if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
+  command->callback([args, command, &exit_code]() {
+    if (!args->project.empty() && !args->rig.empty()) {
+      exit_code = fail("give a project or --rig, not both");
+      return;
+    }
+    if (args->rig.empty() && args->resume.empty()) {
+      const std::string path = args->project.empty() ? kDefaultProject : args->project;
+      Result<ProjectFile> project = loadProject(path);
+      if (!project.ok()) {
+        exit_code = fail(project.message());
+        return;
+      }
+      const ProjectFile& p = project.value();
+      args->rig = p.rig;
+      if (args->clip.empty()) args->clip = p.clip;
+      if (args->target_path.empty()) args->target_path = p.target;
+      if (args->animation.empty()) args->animation = p.animation;
+      // The command line's own flags win over the project's.
+      if (command->count("--harmonics") == 0) args->harmonics = p.harmonics;
+      if (command->count("--terrain") == 0) args->terrain = p.terrain;
+      if (command->count("--window") == 0) args->window = p.window_s;
+      args->pushes.insert(args->pushes.end(), p.pushes.begin(), p.pushes.end());
+      args->body.masses.insert(args->body.masses.end(), p.body.masses.begin(), p.body.masses.end());
+      args->body.fixed.insert(args->body.fixed.end(), p.body.fixed.begin(), p.body.fixed.end());
+      args->body.hinge_limits.insert(args->body.hinge_limits.end(), p.body.hinge_limits.begin(),
+                                     p.body.hinge_limits.end());
+    }
     if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))
       exit_code = fail("--resume continues the search as it was: the rig, clip, window and "
                        "terrain come from the checkpoint");

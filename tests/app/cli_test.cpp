@@ -350,5 +350,28 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   EXPECT_NE(garbage_json.err.find("history.csv"), std::string::npos) << garbage_json.err;
 }
 
+// A project names the rig and the search's settings in one file; broken projects are refused
+// naming the file and the field.
+TEST(CliTest, EvolveReadsAProject) {
+  test::TempDir dir;
+  const auto project = dir / "walk.sinew.json";
+  test::writeText(project, "{\"format\": \"sinew.project\", \"version\": 1, \"rig\": " +
+                               nlohmann::json((test::sourceDir() / "assets" / "biped_walk.bvh").string()).dump() +
+                               ", \"window_s\": 1.5, \"body\": {\"fixed\": [\"LeftArm\"]}}");
+  const test::CommandResult run = test::runSinew("evolve " + test::quote(project) +
+                                                 " --generations 1 --population 4 --out " +
+                                                 test::quote(dir / "out"));
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  EXPECT_NE(run.out.find("window 1.5 s"), std::string::npos) << run.out;
+  const nlohmann::json checkpoint = nlohmann::json::parse(test::readText(dir / "out" / "checkpoint.json"));
+  EXPECT_EQ(checkpoint["problem"]["fixed"][0], "LeftArm");
+  const auto broken = dir / "broken.sinew.json";
+  test::writeText(broken, "{\"format\": \"sinew.project\", \"version\": 1}");
+  const test::CommandResult refused =
+      test::runSinew("evolve " + test::quote(broken) + " --out " + test::quote(dir / "x"));
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("broken.sinew.json: rig: missing"), std::string::npos) << refused.err;
+}
+
 }  // namespace
 }  // namespace sinew
