@@ -13,6 +13,10 @@ deterministic, so rerunning the script reproduces the file byte for byte.
 import math
 import sys
 
+sys.dont_write_bytecode = True    # keep assets/src free of __pycache__
+from rig import (cross, dot, euler_zxy, hermite, main, mmul, mT, mvec, norm, periodic, rotx,
+                 roty, rotz, unit, vadd, vmul, vsub, zxy)
+
 # ------------------------------------------------------------------ timing
 FPS = 30
 STRIDE_FRAMES = 32                        # one gait cycle: left + right step
@@ -106,57 +110,8 @@ SWING = [(0.00, None, 0.00, None, None),
 
 
 # ------------------------------------------------------------------ maths
-def vadd(a, b): return tuple(x + y for x, y in zip(a, b))
-def vsub(a, b): return tuple(x - y for x, y in zip(a, b))
-def vmul(a, k): return tuple(x * k for x in a)
-def dot(a, b): return sum(x * y for x, y in zip(a, b))
-def norm(a): return math.sqrt(dot(a, a))
-def unit(a): return vmul(a, 1.0 / norm(a))
-def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                         a[0] * b[1] - a[1] * b[0])
-def mmul(a, b): return tuple(tuple(dot(r, c) for c in zip(*b)) for r in a)
-def mvec(m, v): return tuple(dot(r, v) for r in m)
-def mT(m): return tuple(zip(*m))
-
-
-def rot(axis, d):
-    """Right-handed rotation by d degrees about the X, Y or Z axis."""
-    c, s = math.cos(math.radians(d)), math.sin(math.radians(d))
-    return {"x": ((1, 0, 0), (0, c, -s), (0, s, c)),
-            "y": ((c, 0, s), (0, 1, 0), (-s, 0, c)),
-            "z": ((c, -s, 0), (s, c, 0), (0, 0, 1))}[axis]
-
-
-def rotx(d): return rot("x", d)
-def roty(d): return rot("y", d)
-def rotz(d): return rot("z", d)
-def zxy(z, x, y): return mmul(rotz(z), mmul(rotx(x), roty(y)))
-
-
-def euler_zxy(m):
-    """Inverse of zxy(): (z, x, y) in degrees with R = Rz Rx Ry."""
-    x = math.asin(max(-1.0, min(1.0, m[2][1])))
-    return tuple(math.degrees(a) for a in
-                 (math.atan2(-m[0][1], m[1][1]), x, math.atan2(-m[2][0], m[2][2])))
-
-
-def hermite(v0, v1, m0, m1, u, h):
-    """Cubic Hermite on a segment of length h; tangents per unit parameter."""
-    u2, u3 = u * u, u * u * u
-    return ((2 * u3 - 3 * u2 + 1) * v0 + (u3 - 2 * u2 + u) * h * m0
-            + (3 * u2 - 2 * u3) * v1 + (u3 - u2) * h * m1)
-
-
-def periodic(table, p, col=1):
-    """Periodic Catmull-Rom through (phase, ...) rows; first phase is 0."""
-    n = len(table)
-    t = lambda i: table[i % n][0] + i // n       # key phase, wrapped
-    v = lambda i: table[i % n][col]
-    m = lambda i: (v(i + 1) - v(i - 1)) / (t(i + 1) - t(i - 1))
-    p %= 1.0
-    i = max(j for j in range(n) if table[j][0] <= p)
-    h = t(i + 1) - t(i)
-    return hermite(v(i), v(i + 1), m(i), m(i + 1), (p - t(i)) / h, h)
+# Vectors, rotations, Euler angles, Hermite splines and the BVH writer are shared with the other
+# creature scripts (rig.py).
 
 
 def spline(us, vs, m0, m1, u):
@@ -282,40 +237,6 @@ def pose(frame):
 
 
 # ------------------------------------------------------------------ BVH out
-def fmt(v):
-    s = "%.6f" % v
-    return "0.000000" if s == "-0.000000" else s    # no "-0" noise in diffs
-
-
-def write_bvh(out):
-    order, rots = [], "Zrotation Xrotation Yrotation"
-
-    def node(n, depth):
-        name, off, kids = n
-        tab = "\t" * depth
-        if name is None:
-            out.write("%sEnd Site\n%s{\n" % (tab, tab))
-        else:
-            order.append(name)
-            out.write("%s%s %s\n%s{\n" % (tab, "JOINT" if depth else "ROOT", name, tab))
-        out.write("%s\tOFFSET %s\n" % (tab, " ".join(fmt(c) for c in off)))
-        if name is not None:
-            out.write("%s\tCHANNELS %s\n" % (
-                tab, "3 " + rots if depth else "6 Xposition Yposition Zposition " + rots))
-        for k in kids:
-            node(k, depth + 1)
-        out.write("%s}\n" % tab)
-
-    out.write("HIERARCHY\n")
-    node(SKELETON, 0)
-    out.write("MOTION\nFrames: %d\nFrame Time: %.7f\n" % (NFRAMES, 1.0 / FPS))
-    for f in range(NFRAMES):
-        root, loc = pose(f)
-        vals = list(root) + [a for name in order for a in euler_zxy(loc[name])]
-        out.write(" ".join(fmt(v) for v in vals) + "\n")
-
-
-# ------------------------------------------------------------------ check
 def check(path):
     """Independent check: parse the BVH text, run FK, measure the walk.
 
@@ -431,9 +352,4 @@ def check(path):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--check":
-        sys.exit(0 if check(sys.argv[2]) else 1)
-    elif len(sys.argv) == 1:
-        write_bvh(sys.stdout)
-    else:
-        sys.exit(__doc__)
+    main(__doc__, check, SKELETON, NFRAMES, FPS, pose)

@@ -19,7 +19,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True    # keep assets/src free of __pycache__
-from rig import (main, loop_and_speed_ok, joint_offsets, mmul, mT, mvec, periodic, rotx, smooth, stance_slides,
+from rig import (main, open_and_check_ground, loop_and_speed_ok, joint_offsets, mmul, mT, mvec, periodic, rotx, smooth, stance_slides,
                  two_bone, bone_rotation, vadd, vsub, write_bvh, Motion, hinge_report)
 
 # ------------------------------------------------------------------ timing
@@ -121,12 +121,7 @@ def pose(frame):
 
 # ------------------------------------------------------------------ check
 def check(path):
-    m = Motion(path)
-    print(m.summary())
-    low = m.lowest()
-    print("lowest joint or end site: %.3f cm (%s, frame %d) -> %s" % (
-        low[0] + 0.0, low[1], low[2], "OK" if low[0] >= -0.05 else "BELOW GROUND"))
-    ok = low[0] >= -0.05
+    m, ok = open_and_check_ground(path)
     st = stance_slides([m.track("Toe"), m.track("Toe_end")], ground=0.01)
     print("contacts (first frame, frames, slide mm): " + ", ".join("%d %d %.3f" % c for c in st))
     slide = max(c[2] for c in st)

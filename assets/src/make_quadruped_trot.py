@@ -19,7 +19,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True    # keep assets/src free of __pycache__
-from rig import (main, loop_and_speed_ok, bone_rotation, half_rotation, hinge_report, joint_offsets, mmul, mT, mvec,
+from rig import (main, open_and_check_ground, loop_and_speed_ok, bone_rotation, half_rotation, hinge_report, joint_offsets, mmul, mT, mvec,
                  norm, periodic, rotx, roty, rotz, smooth, stance_slides, two_bone, vadd, vsub,
                  write_bvh, Motion)
 
@@ -162,12 +162,7 @@ def pose(frame):
 
 # ------------------------------------------------------------------ check
 def check(path):
-    m = Motion(path)
-    print(m.summary())
-    low = m.lowest()
-    print("lowest joint or end site: %.3f cm (%s, frame %d) -> %s" % (
-        low[0] + 0.0, low[1], low[2], "OK" if low[0] >= -0.05 else "BELOW GROUND"))
-    ok = low[0] >= -0.05
+    m, ok = open_and_check_ground(path)
     worst_slide, contacts = 0.0, {}
     for prefix in LEGS:
         pts = [m.track(prefix + "Toe"), m.track(prefix + "Toe_end")]

@@ -19,7 +19,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True    # keep assets/src free of __pycache__
-from rig import (main, loop_and_speed_ok, joint_offsets, mmul, mT, mvec, periodic, rotx, roty, rotz, smooth,
+from rig import (main, open_and_check_ground, loop_and_speed_ok, joint_offsets, mmul, mT, mvec, periodic, rotx, roty, rotz, smooth,
                  stance_slides, two_bone, bone_rotation, hermite, vadd, vsub, write_bvh,
                  Motion, hinge_report)
 
@@ -119,12 +119,7 @@ def pose(frame):
 
 # ------------------------------------------------------------------ check
 def check(path):
-    m = Motion(path)
-    print(m.summary())
-    low = m.lowest()
-    print("lowest joint or end site: %.3f cm (%s, frame %d) -> %s" % (
-        low[0] + 0.0, low[1], low[2], "OK" if low[0] >= -0.05 else "BELOW GROUND"))
-    ok = low[0] >= -0.05
+    m, ok = open_and_check_ground(path)
     heel = lambda w, sd: vadd(w[sd + "Foot"][0], mvec(w[sd + "Foot"][1], HEEL))
     worst = 0.0
     for sd, shift in (("Left", 0.0), ("Right", 0.5)):

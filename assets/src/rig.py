@@ -275,6 +275,16 @@ def half_rotation(m):
     return _axis_rot(axis, math.degrees(angle / 2))
 
 
+def open_and_check_ground(path):
+    """Reads a written BVH, prints its summary and its lowest point; (motion, nothing below ground)."""
+    m = Motion(path)
+    print(m.summary())
+    low = m.lowest()
+    print("lowest joint or end site: %.3f cm (%s, frame %d) -> %s" % (
+        low[0] + 0.0, low[1], low[2], "OK" if low[0] >= -0.05 else "BELOW GROUND"))
+    return m, low[0] >= -0.05
+
+
 def loop_and_speed_ok(m, speed, expected_speed):
     """Prints the loop closure and says whether the loop closes and the speed is the authored one."""
     loop = m.loop_error()
