@@ -8,7 +8,6 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -17,10 +16,7 @@
 #include "cli/commands.h"
 #include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
-#include "sinew/physics/body_plan.h"
 #include "sinew/search/session.h"
-#include "sinew/spectral/analysis.h"
-#include "sinew/spectral/target_io.h"
 
 namespace sinew::app {
 namespace {
@@ -48,6 +44,7 @@ struct EvolveArgs {
   std::string out;
   std::string terrain = "flat";
   std::vector<std::string> pushes;
+  std::vector<std::string> weights;
   ImportFlags import;
   BodyFlags body;
 };
@@ -122,10 +119,30 @@ int runEvolve(EvolveArgs args) {
     if (!push.ok()) return fail(push.message());
     simulation.pushes.push_back(push.value());
   }
+  search::FitnessWeights weights;
+  for (const std::string& text : args.weights) {
+    const size_t eq = text.find('=');
+    int term = -1;
+    for (int k = 0; k < search::kFitnessTermCount; ++k)
+      if (eq != std::string::npos && text.substr(0, eq) == search::fitnessTermName(k)) term = k;
+    double value = -1.0;
+    try {
+      size_t used = 0;
+      if (term >= 0) value = std::stod(text.substr(eq + 1), &used);
+      if (term >= 0 && used != text.size() - eq - 1) value = -1.0;
+    } catch (const std::exception&) {
+      value = -1.0;
+    }
+    if (term < 0 || !(value >= 0.0))
+      return fail("--weights '" + text + "': expected TERM=VALUE >= 0, TERM one of fall, tracking, "
+                  "speed, heading, placement, upright, energy");
+    search::fitnessWeight(weights, term) = value;
+  }
   search::GenomeSettings genome;
   genome.no_prior = args.no_prior;
   Result<search::Problem> problem =
-      search::Problem::create(rig.plan, rig.asset.skeleton, rig.target, genome, simulation);
+      search::Problem::create(rig.plan, rig.asset.skeleton, rig.target, genome, simulation,
+                              weights);
   if (!problem.ok()) return fail(problem.message());
 
   std::error_code ec;
@@ -153,6 +170,7 @@ int runEvolve(EvolveArgs args) {
       Status budget = made.value()->setBudget(args.generations, args.minutes);
       if (!budget.ok()) return fail(budget.message());
     }
+    if (!args.weights.empty()) made.value()->setWeights(weights);  // from the next generation
     if (made.value()->finished())
       return fail(args.resume + ": the search's budget (" +
                   std::to_string(made.value()->settings().generations) + " generations, " +
@@ -298,6 +316,10 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command->add_option("--push", args->pushes,
                       "Robustness: every evaluation takes this push, TIME,X,Y,Z[,LINK] (seconds, "
                       "N s); repeatable");
+  command->add_option("--weights", args->weights,
+                      "Fitness weights TERM=VALUE (fall, tracking, speed, heading, placement, "
+                      "upright, energy); repeatable")
+      ->delimiter(',');
   command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
   command->add_option("--out", args->out, "Output folder")->required();
   args->import.addTo(*command);

@@ -37,7 +37,8 @@ bool startEvolution(EditorState& state) {
   search::GenomeSettings genome;
   genome.no_prior = evolution.settings.no_prior;
   Result<search::Problem> problem = search::Problem::create(
-      plan.value(), skeleton, state.analysis->target, genome, simulation);
+      plan.value(), skeleton, state.analysis->target, genome, simulation,
+      evolution.settings.weights);
   if (!problem.ok()) {
     state.log.error("evolve: " + problem.message());
     return false;
@@ -80,6 +81,14 @@ void stopEvolution(EditorState& state) {
   if (!evolution.session) return;
   evolution.session->stop();
   evolution.snapshot = evolution.session->snapshot();
+}
+
+void setEvolutionWeights(EditorState& state) {
+  EvolutionState& evolution = state.evolution;
+  if (!evolution.session) return;
+  evolution.session->setWeights(evolution.settings.weights);
+  const int next = evolution.snapshot ? evolution.snapshot->generation + 1 : 1;
+  state.log.info("evolve: new fitness weights from generation " + std::to_string(next));
 }
 
 void pollEvolution(EditorState& state) {

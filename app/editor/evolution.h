@@ -20,6 +20,7 @@ struct EvolutionSettings {
   int population = 0;      // 0: CMA-ES's default (4 + 3 ln n)
   bool no_prior = false;    // the baseline: random start, generic ranges
   int shown = 8;            // individuals drawn in the viewport, best first
+  search::FitnessWeights weights;  // the fitness terms' weights; live while a search runs
 };
 
 struct EvolutionState {
@@ -37,6 +38,8 @@ bool startEvolution(EditorState& state);
 void pauseEvolution(EditorState& state);
 void resumeEvolution(EditorState& state);
 void stopEvolution(EditorState& state);  // within one simulation step; keeps the snapshot
+// Hands the settings' weights to the running search (from its next generation; logged).
+void setEvolutionWeights(EditorState& state);
 // Takes the session's latest snapshot and logs each finished generation. Call once per frame.
 void pollEvolution(EditorState& state);
 // Writes best.json, best.bvh and best.glb of the best so far into evolution.export_dir.

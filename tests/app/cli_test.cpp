@@ -305,7 +305,8 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   test::TempDir dir;
   const auto out = dir / "evolved";
   const test::CommandResult run = test::runSinew(
-      "evolve --generations 2 --population 4 --window 1.5 --threads 2 --out " + test::quote(out));
+      "evolve --generations 2 --population 4 --window 1.5 --threads 2 --weights energy=0 --out " +
+      test::quote(out));
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("seeded from the DFT"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("gen   2"), std::string::npos) << run.out;
@@ -317,6 +318,7 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   const nlohmann::json best = nlohmann::json::parse(test::readText(out / "best.json"));
   EXPECT_EQ(best["format"], "sinew.controller");
   EXPECT_TRUE(best["fitness"].contains("total"));
+  EXPECT_EQ(best["fitness"]["energy"].get<double>(), 0.0);  // --weights energy=0
   const double survived = best["fitness"]["survived_s"].get<double>();
   // The controller replays: the same window, the same fall (or none).
   const auto replay_json = dir / "replay.json";
@@ -341,6 +343,10 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   EXPECT_NE(more.out.find("gen   3"), std::string::npos) << more.out;
   EXPECT_EQ(more.out.find("gen   2"), std::string::npos) << more.out;
 
+  const test::CommandResult bad_weight = test::runSinew(
+      "evolve --weights grace=2 --out " + test::quote(dir / "x"));
+  EXPECT_NE(bad_weight.exit_code, 0);
+  EXPECT_NE(bad_weight.err.find("--weights 'grace=2'"), std::string::npos) << bad_weight.err;
   const test::CommandResult bad = test::runSinew("evolve --out " + test::quote(dir / "x") +
                                                  " --controller nope.json");
   EXPECT_NE(bad.exit_code, 0);

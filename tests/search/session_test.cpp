@@ -164,6 +164,22 @@ TEST(SearchSession, CheckpointResumeEqualsAnUninterruptedRun) {
   }
 }
 
+// Weights changed while a search runs apply from the next generation, not to the one before.
+TEST(SearchSession, NewWeightsApplyFromTheNextGeneration) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  auto session = Session::create(makeProblem(biped, 1.0), small(2, 2)).value();
+  ASSERT_TRUE(session->runGeneration());
+  FitnessWeights weights;
+  weights.energy = 0.0;
+  session->setWeights(weights);
+  ASSERT_TRUE(session->runGeneration());
+  const auto snap = session->snapshot();
+  EXPECT_GT(snap->history[0].terms[6].best, 0.0);   // energy weighed in generation 1
+  EXPECT_EQ(snap->history[1].terms[6].worst, 0.0);  // and nowhere in generation 2
+  EXPECT_EQ(session->problem().weights.energy, 0.0);
+}
+
 // The issue: on the stepper and the hopper a short run improves the fitness by a printed margin
 // within a few generations.
 TEST(SearchSession, ShortRunsImproveTheStepperAndTheHopper) {

@@ -60,6 +60,21 @@ void drawEvolvePanel(EditorState& state) {
   if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f")) evolution.settings.window_s = window;
   ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
   ImGui::EndDisabled();
+  if (ImGui::TreeNode("fitness weights")) {
+    // Live: a running search takes them from its next generation.
+    bool changed = false;
+    for (int k = 0; k < search::kFitnessTermCount; ++k) {
+      float w = static_cast<float>(search::fitnessWeight(evolution.settings.weights, k));
+      ImGui::SetNextItemWidth(120.0f);
+      if (ImGui::DragFloat(search::fitnessTermName(k), &w, 0.01f, 0.0f, 100.0f, "%.3f")) {
+        search::fitnessWeight(evolution.settings.weights, k) = std::max(w, 0.0f);
+        changed = true;
+      }
+      if (k % 2 == 0 && k + 1 < search::kFitnessTermCount) ImGui::SameLine();
+    }
+    if (changed) setEvolutionWeights(state);
+    ImGui::TreePop();
+  }
 
   if (!running) {
     if (ImGui::Button(evolution.snapshot ? "Start again" : "Start")) startEvolution(state);

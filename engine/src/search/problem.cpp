@@ -224,6 +224,12 @@ Status FitnessWeights::validate() const {
   return Status();
 }
 
+double& fitnessWeight(FitnessWeights& w, int term) {
+  double* weights[kFitnessTermCount] = {&w.fall,      &w.tracking, &w.speed, &w.heading,
+                                        &w.placement, &w.upright,  &w.energy};
+  return *weights[std::clamp(term, 0, kFitnessTermCount - 1)];
+}
+
 const char* fitnessTermName(int term) {
   static const char* const names[kFitnessTermCount] = {"fall",      "tracking", "speed", "heading",
                                                        "placement", "upright",  "energy"};

@@ -95,6 +95,9 @@ struct FitnessWeights {
   Status validate() const;  // the message names the offending field
 };
 
+// The weight of term `term` (0..kFitnessTermCount-1, in fitnessTermName order), to read or set.
+double& fitnessWeight(FitnessWeights& weights, int term);
+
 // One evaluation's terms (already weighted) and raw figures.
 struct FitnessTerms {
   double fall = 0.0, tracking = 0.0, speed = 0.0, heading = 0.0, placement = 0.0, upright = 0.0,
