@@ -1,13 +1,15 @@
-// Shared by `sinew simulate` and `sinew evolve`: loading a rig with the motion to track, parsing
-// terrain and pushes, and the evolved controller file (best.json).
+// Shared by `sinew simulate` and `sinew evolve`: loading a rig with the motion to track and the
+// body overrides' flags. (Terrain and push grammars and projects: project/project.h.)
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "project/project.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
 #include "sinew/search/controller_io.h"
@@ -33,31 +35,12 @@ struct BodyFlags {
   Result<physics::BodyPlanSettings> settings() const;  // the message names the flag
 };
 
-// A project (format "sinew.project", version 1, JSON): what to evolve or simulate, so a pipeline
-// names one file. Paths inside are relative to the project file. Fields: "rig" (required),
-// "clip", "animation", "target" (coefficients .json), "harmonics" (5), "terrain" ("flat"),
-// "window_s" (10), "pushes" (["TIME,X,Y,Z[,LINK]"...]), "body": {"masses": ["NAME=KG"...],
-// "fixed": [NAME...], "hinge_limits": ["NAME=LO,HI"...]}. The bundled default project
-// (assets/default.sinew.json) is the walk the editor opens.
-struct ProjectFile {
-  std::string rig, clip, animation, target;
-  int harmonics = 5;
-  std::string terrain = "flat";
-  double window_s = 10.0;
-  std::vector<std::string> pushes;
-  BodyFlags body;
-};
-Result<ProjectFile> loadProject(const std::filesystem::path& path);
 inline constexpr const char* kDefaultProject = SINEW_ASSET_DIR "/default.sinew.json";
 
 Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::string& clip_path,
                                    const std::string& target_path, const std::string& animation,
                                    int harmonics, const ImportFlags& import,
-                                   const BodyFlags& body = {});
-
-// "flat", "slope:5", "steps:0.05,0.6", "rough:0.02,7".
-Result<physics::TerrainSettings> parseTerrain(const std::string& text);
-// "TIME,X,Y,Z[,LINK]".
-Result<physics::Push> parsePush(const std::string& text);
+                                   const BodyFlags& body = {},
+                                   const std::map<std::string, int>& joint_k = {});
 
 }  // namespace sinew::app

@@ -1,4 +1,4 @@
-// `sinew edit [FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot OUT.png
+// `sinew edit [PROJECT | FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot OUT.png
 // --frames N [--evolve-generations G]]`: the editor.
 #include <memory>
 
@@ -12,7 +12,8 @@ void addEditCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "edit", "Open the editor (the default when sinew runs without a command)");
   command->add_option("file", options->file,
-                      "BVH or glTF file to open (default: the bundled biped walk)");
+                      "A project (.json), or a BVH or glTF file to open (default: the bundled "
+                      "default project, the biped walk)");
   command->add_option("--animation", options->animation, "Animation to open in a glTF, by name");
   command->add_option("--screenshot", options->screenshot,
                       "Render --frames frames with playback running, save the window as this PNG "
@@ -29,7 +30,7 @@ void addEditCommand(CLI::App& app, int& exit_code) {
                       "(at most 2 minutes)")
       ->check(CLI::Range(0, 10000));
   command->callback([options, &exit_code] {
-    if (options->file.empty()) options->file = SINEW_ASSET_DIR "/biped_walk.bvh";
+    if (options->file.empty()) options->file = SINEW_ASSET_DIR "/default.sinew.json";
     options->shader_dir = SINEW_SHADER_DIR;
     exit_code = editor::runEditor(*options);
   });

@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -45,6 +46,8 @@ struct EvolveArgs {
   std::string terrain = "flat";
   std::vector<std::string> pushes;
   std::vector<std::string> weights;
+  search::FitnessWeights project_weights;  // the project's; --weights changes them term by term
+  std::map<std::string, int> joint_k;      // the project's K per joint, by name
   ImportFlags import;
   BodyFlags body;
 };
@@ -104,22 +107,14 @@ int runEvolve(EvolveArgs args) {
     }
   }
   Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
-                                              args.harmonics, args.import, args.body);
+                                              args.harmonics, args.import, args.body, args.joint_k);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
 
-  Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
-  if (!terrain.ok()) return fail(terrain.message());
-  physics::SimulationSettings simulation;
-  simulation.seconds = args.window;
-  simulation.world.terrain = terrain.value();
-  for (const std::string& text : args.pushes) {
-    // Robustness: every evaluation takes the same pushes.
-    Result<physics::Push> push = parsePush(text);
-    if (!push.ok()) return fail(push.message());
-    simulation.pushes.push_back(push.value());
-  }
-  search::FitnessWeights weights;
+  Result<physics::SimulationSettings> simulation =
+      simulationSettings(args.window, args.terrain, args.pushes);
+  if (!simulation.ok()) return fail(simulation.message());
+  search::FitnessWeights weights = args.project_weights;
   for (const std::string& text : args.weights) {
     const size_t eq = text.find('=');
     int term = -1;
@@ -141,7 +136,7 @@ int runEvolve(EvolveArgs args) {
   search::GenomeSettings genome;
   genome.no_prior = args.no_prior;
   Result<search::Problem> problem =
-      search::Problem::create(rig.plan, rig.asset.skeleton, rig.target, genome, simulation,
+      search::Problem::create(rig.plan, rig.asset.skeleton, rig.target, genome, simulation.value(),
                               weights);
   if (!problem.ok()) return fail(problem.message());
 
@@ -331,12 +326,12 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
     }
     if (args->rig.empty() && args->resume.empty()) {
       const std::string path = args->project.empty() ? kDefaultProject : args->project;
-      Result<ProjectFile> project = loadProject(path);
+      Result<Project> project = loadProject(path);
       if (!project.ok()) {
         exit_code = fail(project.message());
         return;
       }
-      const ProjectFile& p = project.value();
+      const Project& p = project.value();
       args->rig = p.rig;
       if (args->clip.empty()) args->clip = p.clip;
       if (args->target_path.empty()) args->target_path = p.target;
@@ -345,6 +340,12 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       if (command->count("--harmonics") == 0) args->harmonics = p.harmonics;
       if (command->count("--terrain") == 0) args->terrain = p.terrain;
       if (command->count("--window") == 0) args->window = p.window_s;
+      if (command->count("--population") == 0) args->population = p.search.population;
+      if (command->count("--optimizer") == 0) args->optimizer = p.search.optimizer;
+      if (command->count("--seed") == 0) args->seed = p.search.seed;
+      if (command->count("--no-prior") == 0) args->no_prior = p.search.no_prior;
+      args->project_weights = p.search.weights;
+      args->joint_k = p.joint_k;
       args->pushes.insert(args->pushes.end(), p.pushes.begin(), p.pushes.end());
       args->body.masses.insert(args->body.masses.end(), p.body.masses.begin(), p.body.masses.end());
       args->body.fixed.insert(args->body.fixed.end(), p.body.fixed.begin(), p.body.fixed.end());

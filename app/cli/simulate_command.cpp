@@ -76,11 +76,10 @@ int runSimulate(const SimulateArgs& args) {
   LoadedRig& rig = loaded.value();
   const motion::Skeleton& skeleton = rig.asset.skeleton;
 
-  Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
-  if (!terrain.ok()) return fail(terrain.message());
-  physics::SimulationSettings settings;
-  settings.seconds = args.seconds;
-  settings.world.terrain = terrain.value();
+  Result<physics::SimulationSettings> simulation =
+      simulationSettings(args.seconds, args.terrain, args.pushes);
+  if (!simulation.ok()) return fail(simulation.message());
+  physics::SimulationSettings& settings = simulation.value();
   settings.tracking.feedback = !args.no_feedback;
   if (!args.controller_path.empty()) {
     // An evolved controller: its coefficients and its balance gains.
@@ -102,11 +101,6 @@ int runSimulate(const SimulateArgs& args) {
     b.torso = args.balance[4];
   }
   settings.start_moving = !args.from_standing;
-  for (const std::string& text : args.pushes) {
-    Result<physics::Push> push = parsePush(text);
-    if (!push.ok()) return fail(push.message());
-    settings.pushes.push_back(push.value());
-  }
   const physics::BodyPlan& plan = rig.plan;
   const spectral::TargetMotion& target = rig.target;
   const std::string& what = rig.what;
@@ -115,7 +109,7 @@ int runSimulate(const SimulateArgs& args) {
               "%.1f s on %s terrain, balance feedback %s\n",
               args.rig.c_str(), plan.links.size(), plan.dofCount(),
               plan.total_mass_kg, what.c_str(), target.period(), args.seconds,
-              physics::terrainKindName(terrain.value().kind), args.no_feedback ? "off" : "on");
+              physics::terrainKindName(settings.world.terrain.kind), args.no_feedback ? "off" : "on");
   Result<physics::SimulationReport> run = physics::simulate(plan, skeleton, target, settings);
   if (!run.ok()) return fail(run.message());
   const physics::SimulationReport& r = run.value();

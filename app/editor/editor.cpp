@@ -4,18 +4,22 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <vector>
 
 #include "editor/gl.h"  // before GLFW: it defines GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <imgui_internal.h>  // FindWindowByName: the size a user dragged a panel to
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
 #include "editor/camera.h"
 #include "editor/editor_state.h"
 #include "editor/panels/panels.h"
+#include "editor/preferences.h"
+#include "editor/project_model.h"
 #include "editor/renderer.h"
 #include "editor/scene.h"
 #include "editor/screenshot.h"
@@ -41,16 +45,24 @@ struct Layout {
   Rect files, log, spectrum, evolve, timeline, viewport;
 };
 
-Layout computeLayout(ImVec2 display) {
-  const float left_w = std::round(std::clamp(display.x * 0.2f, 260.0f, 340.0f));
-  const float right_w = std::round(std::clamp(display.x * 0.3f, 320.0f, 500.0f));
-  const float timeline_h = 128.0f;
-  const float files_h = std::round(display.y * 0.42f);
+// The panels' sizes: the user's (dragged, persisted in the preferences) where set, else defaults
+// for the window's size; always leaving the viewport at least 200 pixels.
+Layout computeLayout(ImVec2 display, const PanelLayout& user) {
+  auto chosen = [](float value, float fallback) { return value > 0.0f ? value : fallback; };
+  float left_w = std::round(chosen(user.left_width, std::clamp(display.x * 0.2f, 260.0f, 340.0f)));
+  float right_w = std::round(chosen(user.right_width, std::clamp(display.x * 0.3f, 320.0f, 500.0f)));
+  left_w = std::clamp(left_w, 160.0f, std::max(160.0f, display.x * 0.4f));
+  right_w = std::clamp(right_w, 200.0f, std::max(200.0f, display.x - left_w - 200.0f));
+  const float timeline_h =
+      std::round(std::clamp(chosen(user.timeline_height, 128.0f), 80.0f, std::max(80.0f, display.y * 0.5f)));
+  const float files_h =
+      std::round(display.y * std::clamp(chosen(user.files_fraction, 0.42f), 0.15f, 0.85f));
   const float centre_w = std::max(display.x - left_w - right_w, 1.0f);
   Layout l;
   l.files = {ImVec2(0, 0), ImVec2(left_w, files_h)};
   l.log = {ImVec2(0, files_h), ImVec2(left_w, display.y - files_h)};
-  const float spectrum_h = std::round(display.y * 0.6f);
+  const float spectrum_h =
+      std::round(display.y * std::clamp(chosen(user.spectrum_fraction, 0.6f), 0.15f, 0.85f));
   l.spectrum = {ImVec2(display.x - right_w, 0), ImVec2(right_w, spectrum_h)};
   l.evolve = {ImVec2(display.x - right_w, spectrum_h), ImVec2(right_w, display.y - spectrum_h)};
   l.timeline = {ImVec2(left_w, display.y - timeline_h), ImVec2(centre_w, timeline_h)};
@@ -61,6 +73,24 @@ Layout computeLayout(ImVec2 display) {
 void place(const Rect& rect) {
   ImGui::SetNextWindowPos(rect.pos, ImGuiCond_Always);
   ImGui::SetNextWindowSize(rect.size, ImGuiCond_Always);
+}
+
+// A panel the user dragged to another size this frame moves the layout's split with it.
+void followResizes(const Layout& placed, ImVec2 display, PanelLayout& user) {
+  auto size = [](const char* name) {
+    const ImGuiWindow* window = ImGui::FindWindowByName(name);
+    return window != nullptr ? window->SizeFull : ImVec2(0, 0);
+  };
+  auto moved = [](float now, float was) { return now > 0.0f && std::abs(now - was) > 0.5f; };
+  const ImVec2 files = size("Files"), log = size("Log"), spectrum = size("Spectrum"),
+               evolve = size("Evolve"), timeline = size("Timeline");
+  if (moved(files.x, placed.files.size.x)) user.left_width = files.x;
+  if (moved(log.x, placed.log.size.x)) user.left_width = log.x;
+  if (moved(files.y, placed.files.size.y)) user.files_fraction = files.y / display.y;
+  if (moved(spectrum.x, placed.spectrum.size.x)) user.right_width = spectrum.x;
+  if (moved(evolve.x, placed.evolve.size.x)) user.right_width = evolve.x;
+  if (moved(spectrum.y, placed.spectrum.size.y)) user.spectrum_fraction = spectrum.y / display.y;
+  if (moved(timeline.y, placed.timeline.size.y)) user.timeline_height = timeline.y;
 }
 
 struct ViewportDrag {
@@ -85,9 +115,31 @@ void handleViewportMouse(OrbitCamera& camera, ViewportDrag& drag, const Rect& vi
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
 }
 
-// Space play/pause, Left/Right step a frame, Home rewinds, F frames the character.
-void handleKeys(EditorState& state) {
-  if (ImGui::GetIO().WantCaptureKeyboard) return;
+// Space play/pause, Left/Right step a frame, Home rewinds, F frames the character; Ctrl+Z undo,
+// Ctrl+Shift+Z or Ctrl+Y redo, Ctrl+S save, Ctrl+N new; E starts, pauses or resumes the search,
+// Shift+E stops it. Not while a text field has the keyboard (it has its own undo).
+void handleKeys(EditorState& state, FilesPanelState& files_panel) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureKeyboard) return;
+  if (io.KeyCtrl) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_Z, false)) io.KeyShift ? redo(state) : undo(state);
+    if (ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo(state);
+    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) saveOpenProject(state, files_panel);
+    if (ImGui::IsKeyPressed(GLFW_KEY_N, false)) newProject(state);
+    return;
+  }
+  if (ImGui::IsKeyPressed(GLFW_KEY_E, false)) {
+    const std::string run = state.evolution.snapshot ? state.evolution.snapshot->state : "";
+    if (io.KeyShift) {
+      stopEvolution(state);
+    } else if (run == "running") {
+      pauseEvolution(state);
+    } else if (run == "paused") {
+      resumeEvolution(state);
+    } else {
+      startEvolution(state);
+    }
+  }
   const motion::Clip* clip = state.clip();
   if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) state.frame_requested = true;
   if (clip == nullptr) return;
@@ -175,7 +227,38 @@ void drawOverlay(const EditorState& state, const Rect& viewport, const FrameTime
                   "The 3D view is off: its shaders did not load (see Log).");
   }
   draw->AddText(ImVec2(at.x, viewport.pos.y + viewport.size.y - 24.0f), IM_COL32(120, 125, 135, 255),
-                "LMB orbit   MMB / Shift+LMB pan   wheel zoom   F frame   Space play");
+                "LMB orbit   MMB / Shift+LMB pan   wheel zoom   F frame   Space play   "
+                "E evolve   Ctrl+Z undo   Ctrl+S save");
+}
+
+// The unsaved-changes prompt on quit. Returns true when the editor may close now.
+bool drawQuitPrompt(EditorState& state, FilesPanelState& files_panel, bool& asked) {
+  if (asked) {
+    ImGui::OpenPopup("Unsaved changes");
+    asked = false;
+  }
+  bool quit = false;
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    const std::string name =
+        state.project_path.empty() ? "the untitled project" : state.project_path.filename().string();
+    ImGui::Text("Save the changes to %s before closing?", name.c_str());
+    if (state.project_path.empty()) ImGui::TextDisabled("It will be saved as %s", files_panel.save_path.c_str());
+    if (ImGui::Button("Save and close")) {
+      saveOpenProject(state, files_panel);
+      quit = !hasUnsavedChanges(state);  // a failed save keeps the editor open (see Log)
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Close without saving")) {
+      quit = true;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  return quit;
 }
 
 void onGlfwError(int code, const char* description) {
@@ -203,14 +286,29 @@ int runEditor(const EditorOptions& options) {
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   // No multisampling: on Mesa's software rasteriser 4x MSAA cost 3x the frame time (13 fps).
   glfwWindowHint(GLFW_SAMPLES, 0);
-  GLFWwindow* window = glfwCreateWindow(kWindowWidth, kWindowHeight, "Sinew", nullptr, nullptr);
+  // What the editor remembers between runs (not in headless runs: screenshots and tests see the
+  // defaults and leave the user's files alone).
+  const bool headless = !options.screenshot.empty();
+  const std::filesystem::path config = headless ? std::filesystem::path() : configDir();
+  Preferences preferences;
+  std::string preferences_error;
+  if (!config.empty()) {
+    Result<Preferences> loaded = loadPreferences(config / kPreferencesFile);
+    if (loaded.ok()) {
+      preferences = loaded.value();
+    } else {
+      preferences_error = loaded.message();
+    }
+  }
+  const int width = headless ? kWindowWidth : preferences.window_width;
+  const int height = headless ? kWindowHeight : preferences.window_height;
+  GLFWwindow* window = glfwCreateWindow(width, height, "Sinew", nullptr, nullptr);
   if (window == nullptr) {
     std::cerr << "sinew edit: cannot create an OpenGL 3.3 core window\n";
     glfwTerminate();
     return 1;
   }
   glfwMakeContextCurrent(window);
-  const bool headless = !options.screenshot.empty();
   glfwSwapInterval(headless ? 0 : 1);
   std::vector<std::string> dropped;
   glfwSetWindowUserPointer(window, &dropped);
@@ -218,7 +316,7 @@ int runEditor(const EditorOptions& options) {
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;  // the layout is fixed; nothing to persist yet
+  ImGui::GetIO().IniFilename = nullptr;  // the layout is ours (Preferences), not ImGui's ini
   applyTheme();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -237,10 +335,25 @@ int runEditor(const EditorOptions& options) {
     if (Status status = renderer.init(options.shader_dir); !status.ok()) {
       state.log.error(status.message());
     }
+    state.recent_files = preferences.recent_files;
+    if (!preferences_error.empty()) state.log.warning(preferences_error + " (using the defaults)");
+    // A recovery file left behind means the last session ended without closing: keep it aside
+    // (this session autosaves over the usual name) and offer it at the top of Recent.
+    const std::filesystem::path recovery = config.empty() ? config : config / kRecoveryFile;
+    if (!recovery.empty() && std::filesystem::exists(recovery)) {
+      const std::filesystem::path kept = config / "recovered.sinew.json";
+      std::error_code ec;
+      std::filesystem::rename(recovery, kept, ec);
+      if (!ec) {
+        rememberRecent(state, kept.string());
+        state.log.warning("the last session ended with unsaved changes; they are in " + kept.string() +
+                          " (first in Recent)");
+      }
+    }
     if (!options.file.empty()) {
       files_panel.path = options.file;
       files_panel.animation = options.animation;
-      openFile(state, options.file, options.animation);
+      if (!openAny(state, options.file, options.animation)) startUntitled(state);
     }
     if (options.evolve) {
       state.evolution.settings.minutes = options.evolve_minutes;
@@ -251,8 +364,18 @@ int runEditor(const EditorOptions& options) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
     Clock::time_point last = start;
+    Clock::time_point last_autosave = start;
+    app::Project autosaved = state.saved;
+    bool ask_to_quit = false;
+    bool quit_confirmed = false;
     int frame = 0;
-    while (!glfwWindowShouldClose(window)) {
+    while (true) {
+      if (glfwWindowShouldClose(window)) {
+        // Unsaved changes: ask first (never in headless runs).
+        if (headless || quit_confirmed || !hasUnsavedChanges(state)) break;
+        glfwSetWindowShouldClose(window, GLFW_FALSE);
+        ask_to_quit = true;
+      }
       glfwPollEvents();
       const Clock::time_point now = Clock::now();
       const double dt = headless ? kScreenshotDt : std::chrono::duration<double>(now - last).count();
@@ -261,17 +384,25 @@ int runEditor(const EditorOptions& options) {
       state.log.clock_s = std::chrono::duration<double>(now - start).count();
 
       for (const std::string& path : dropped) {
-        if (openFile(state, path)) files_panel.path = path;
+        if (openAny(state, path)) {
+          files_panel.path = path;
+          files_panel.save_path.clear();
+        }
       }
       dropped.clear();
       advancePlayback(state, std::min(dt, 0.25));
-      const std::string title = state.file_name.empty() ? "Sinew" : "Sinew - " + state.file_name;
+      const bool unsaved = hasUnsavedChanges(state);
+      std::string title = "Sinew";
+      if (!state.project_path.empty()) title += " - " + state.project_path.filename().string();
+      if (!state.file_name.empty()) title += " - " + state.file_name;
+      if (unsaved) title += " *";
       glfwSetWindowTitle(window, title.c_str());
 
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      const Layout layout = computeLayout(ImGui::GetIO().DisplaySize);
+      const ImVec2 display = ImGui::GetIO().DisplaySize;
+      const Layout layout = computeLayout(display, preferences.layout);
       place(layout.files);
       drawFilesPanel(state, files_panel);
       place(layout.log);
@@ -283,7 +414,14 @@ int runEditor(const EditorOptions& options) {
       pollEvolution(state);
       place(layout.evolve);
       drawEvolvePanel(state);
-      handleKeys(state);
+      handleKeys(state, files_panel);
+      if (drawQuitPrompt(state, files_panel, ask_to_quit)) {
+        quit_confirmed = true;
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+      }
+      if (!headless) followResizes(layout, display, preferences.layout);
+      // One undo step per finished edit: nothing is recorded while a slider is being dragged.
+      if (!ImGui::IsAnyItemActive()) recordHistory(state);
       handleViewportMouse(camera, drag, layout.viewport);
       const Scene scene = buildScene(state);
       updateCamera(camera, state, scene, dt);
@@ -328,6 +466,33 @@ int runEditor(const EditorOptions& options) {
         glfwSetWindowShouldClose(window, GLFW_TRUE);
       }
       glfwSwapBuffers(window);
+
+      // Autosave to the recovery file every 30 s while there are unsaved changes.
+      if (!recovery.empty() && unsaved && now - last_autosave > std::chrono::seconds(30)) {
+        last_autosave = now;
+        const app::Project current = captureProject(state);
+        if (!(current == autosaved)) {
+          if (Status status = writeRecovery(state, recovery); !status.ok()) {
+            state.log.warning("autosave: " + status.message());
+          }
+          autosaved = current;
+        }
+      }
+    }
+    stopEvolution(state);
+    if (!config.empty()) {
+      std::error_code ec;
+      std::filesystem::remove(recovery, ec);  // closed on purpose: nothing to recover
+      preferences.recent_files = state.recent_files;
+      int w = 0, h = 0;
+      glfwGetWindowSize(window, &w, &h);
+      if (w >= 320 && h >= 240) {
+        preferences.window_width = w;
+        preferences.window_height = h;
+      }
+      if (Status saved = savePreferences(preferences, config / kPreferencesFile); !saved.ok()) {
+        std::cerr << "sinew edit: " << saved.message() << '\n';
+      }
     }
   }  // GL objects go before the context
 

@@ -22,14 +22,14 @@ const motion::Clip* EditorState::clip() const {
   return &asset->clips[static_cast<size_t>(clip_index)];
 }
 
-namespace {
-
 void rememberRecent(EditorState& state, const std::string& path) {
   auto& recent = state.recent_files;
   recent.erase(std::remove(recent.begin(), recent.end(), path), recent.end());
   recent.insert(recent.begin(), path);
   if (static_cast<int>(recent.size()) > kMaxRecentFiles) recent.resize(kMaxRecentFiles);
 }
+
+namespace {
 
 void rebuildModel(const motion::Skeleton& skeleton, const motion::Clip& clip,
                   AnalysisState& analysis) {
@@ -95,6 +95,8 @@ bool openFile(EditorState& state, const std::filesystem::path& path,
   state.evolution.reported_generation = 0;
   state.asset = std::move(asset);
   state.file_path = path;
+  state.rig_path.clear();
+  state.target_path.clear();
   state.evolution.export_dir = (path.parent_path() / (path.stem().string() + "_evolved")).string();
   state.selected_joint = 0;
   state.frame_requested = true;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "editor/evolution.h"
+#include "editor/history.h"
 #include "sinew/motion/asset.h"
 #include "sinew/spectral/analysis.h"
 #include "sinew/spectral/target_motion.h"
@@ -73,10 +74,15 @@ struct EditorState {
   std::optional<AnalysisState> analysis;  // empty when the clip could not be analysed
   std::string file_name;                  // the loaded file's name, for titles
   std::filesystem::path file_path;        // the loaded file
+  std::string rig_path;     // the rig, when the clip came from another file (a project's "clip")
+  std::string target_path;  // a project's coefficient file: kept so that saving loses nothing
+  std::filesystem::path project_path;     // the open project; empty: untitled
+  app::Project saved;       // the project as last opened or saved: "unsaved changes" compare to it
+  History history;          // undo / redo of every setting (see project_model.h)
   Playback playback;
   ViewToggles view;
   int selected_joint = 0;                 // the joint the spectrum panel shows
-  std::vector<std::string> recent_files;  // most recent first, at most kMaxRecentFiles
+  std::vector<std::string> recent_files;  // files and projects, most recent first (kMaxRecentFiles)
   bool frame_requested = false;           // the camera should frame the character next frame
   EvolutionState evolution;               // the search over the loaded rig, if one ran
   Log log;
@@ -93,6 +99,9 @@ bool openFile(EditorState& state, const std::filesystem::path& path,
 
 // Chooses another clip of the loaded asset: rewinds playback and analyses it.
 void chooseClip(EditorState& state, int clip_index);
+
+// Puts `path` first in the recent files.
+void rememberRecent(EditorState& state, const std::string& path);
 
 // Sets K per joint (clamped to 0..kMaxK) and rebuilds the model and its error.
 void setJointK(EditorState& state, std::vector<int> joint_k);

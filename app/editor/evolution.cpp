@@ -27,17 +27,27 @@ bool startEvolution(EditorState& state) {
   }
   stopEvolution(state);
   const motion::Skeleton& skeleton = state.asset->skeleton;
-  Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, clip);
+  const EvolutionSettings& chosen = evolution.settings;
+  Result<physics::BodyPlanSettings> body = app::parseBodyOverrides(chosen.body);
+  if (!body.ok()) {
+    state.log.error("evolve: body: " + body.message());
+    return false;
+  }
+  Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, clip, body.value());
   if (!plan.ok()) {
     state.log.error("evolve: " + state.file_name + ": " + plan.message());
     return false;
   }
-  physics::SimulationSettings simulation;
-  simulation.seconds = evolution.settings.window_s;
+  Result<physics::SimulationSettings> simulation =
+      app::simulationSettings(chosen.window_s, chosen.terrain, chosen.pushes, "terrain", "push");
+  if (!simulation.ok()) {
+    state.log.error("evolve: " + simulation.message());
+    return false;
+  }
   search::GenomeSettings genome;
   genome.no_prior = evolution.settings.no_prior;
   Result<search::Problem> problem = search::Problem::create(
-      plan.value(), skeleton, state.analysis->target, genome, simulation,
+      plan.value(), skeleton, state.analysis->target, genome, simulation.value(),
       evolution.settings.weights);
   if (!problem.ok()) {
     state.log.error("evolve: " + problem.message());
@@ -47,6 +57,8 @@ bool startEvolution(EditorState& state) {
   settings.generations = 0;
   settings.minutes = evolution.settings.minutes;
   settings.population = evolution.settings.population;
+  settings.optimizer = chosen.optimizer;
+  settings.seed = chosen.seed;
   settings.record_population = true;  // the viewport replays the population
   Result<std::unique_ptr<search::Session>> session =
       search::Session::create(std::move(problem).value(), settings);
@@ -60,9 +72,11 @@ bool startEvolution(EditorState& state) {
   evolution.session->start();
   char line[200];
   std::snprintf(line, sizeof line,
-                "evolve: %d coordinates, population %d, %.1f min, %.0f s window, %s on %d threads",
-                evolution.session->problem().layout.size(), evolution.session->population(),
-                settings.minutes, simulation.seconds,
+                "evolve: %d coordinates, %s, population %d, %.1f min, %.0f s window on %s, %s on %d threads",
+                evolution.session->problem().layout.size(),
+                chosen.optimizer == "ga" ? "genetic algorithm" : "CMA-ES",
+                evolution.session->population(), settings.minutes, chosen.window_s,
+                chosen.terrain.c_str(),
                 genome.no_prior ? "no prior" : "seeded from the model", search::hardwareThreads());
   state.log.info(line);
   return true;

@@ -4,10 +4,13 @@
 // the viewport read it.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "project/project.h"
 #include "sinew/search/session.h"
 
 namespace sinew::editor {
@@ -21,6 +24,12 @@ struct EvolutionSettings {
   bool no_prior = false;    // the baseline: random start, generic ranges
   int shown = 8;            // individuals drawn in the viewport, best first
   search::FitnessWeights weights;  // the fitness terms' weights; live while a search runs
+  std::string optimizer = "cmaes";  // "cmaes" or "ga"
+  std::uint64_t seed = 1;   // same seed, same search (on the same number of threads)
+  // The physical problem (a project's terrain, pushes and body overrides, as text).
+  std::string terrain = "flat";
+  std::vector<std::string> pushes;
+  app::BodyOverrides body;
 };
 
 struct EvolutionState {

@@ -379,5 +379,31 @@ TEST(CliTest, EvolveReadsAProject) {
   EXPECT_NE(refused.err.find("broken.sinew.json: rig: missing"), std::string::npos) << refused.err;
 }
 
+// A version 2 project (as the editor saves it) carries the search's settings and K per joint;
+// the command line's flags still win.
+TEST(CliTest, EvolveTakesTheSearchSettingsOfAVersion2Project) {
+  test::TempDir dir;
+  const auto project = dir / "v2.sinew.json";
+  test::writeText(project, "{\"format\": \"sinew.project\", \"version\": 2, \"rig\": " +
+                               nlohmann::json((test::sourceDir() / "assets" / "biped_walk.bvh").string()).dump() +
+                               ", \"window_s\": 1, \"joint_harmonics\": {\"Head\": 1}, \"search\": "
+                               "{\"optimizer\": \"ga\", \"population\": 6, \"seed\": 9}}");
+  const test::CommandResult run = test::runSinew("evolve " + test::quote(project) +
+                                                 " --generations 1 --seed 3 --out " + test::quote(dir / "out"));
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  EXPECT_NE(run.out.find("genetic algorithm"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("population 6"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("seed 3"), std::string::npos) << run.out;  // the flag wins
+  EXPECT_NE(run.out.find("1 joint with its own K"), std::string::npos) << run.out;
+  test::writeText(project, "{\"format\": \"sinew.project\", \"version\": 2, \"rig\": " +
+                               nlohmann::json((test::sourceDir() / "assets" / "biped_walk.bvh").string()).dump() +
+                               ", \"joint_harmonics\": {\"Tail\": 1}}");
+  const test::CommandResult refused =
+      test::runSinew("evolve " + test::quote(project) + " --generations 1 --out " + test::quote(dir / "x"));
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("joint_harmonics: "), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("no joint called 'Tail'"), std::string::npos) << refused.err;
+}
+
 }  // namespace
 }  // namespace sinew

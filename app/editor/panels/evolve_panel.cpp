@@ -3,6 +3,7 @@
 // best and mean cost per generation, and an export of the best (best.json/.bvh/.glb). The
 // viewport replays the population's runs beside the clip while it is shown.
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <vector>
 
@@ -59,6 +60,43 @@ void drawEvolvePanel(EditorState& state) {
   float window = static_cast<float>(evolution.settings.window_s);
   if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f")) evolution.settings.window_s = window;
   ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  const bool ga = evolution.settings.optimizer == "ga";
+  if (ImGui::BeginCombo("optimiser", ga ? "GA" : "CMA-ES")) {
+    if (ImGui::Selectable("CMA-ES", !ga)) evolution.settings.optimizer = "cmaes";
+    if (ImGui::Selectable("GA (baseline)", ga)) evolution.settings.optimizer = "ga";
+    ImGui::EndCombo();
+  }
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("population", &evolution.settings.population, 1, 4);
+  evolution.settings.population = std::clamp(evolution.settings.population, 0, 1000);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  int seed = static_cast<int>(evolution.settings.seed);
+  if (ImGui::InputInt("seed", &seed)) evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+  if (ImGui::TreeNode("terrain and pushes")) {
+    ImGui::SetNextItemWidth(180.0f);
+    inputText("terrain", evolution.settings.terrain);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("flat | slope:DEG | steps:HEIGHT,DEPTH | rough:AMPLITUDE,SEED");
+    std::vector<std::string>& pushes = evolution.settings.pushes;
+    for (size_t i = 0; i < pushes.size(); ++i) {
+      ImGui::PushID(static_cast<int>(i));
+      ImGui::SetNextItemWidth(180.0f);
+      inputText("push", pushes[i]);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("TIME,X,Y,Z[,LINK]: seconds, N s (Y up)");
+      ImGui::SameLine();
+      const bool remove = ImGui::SmallButton("remove");
+      ImGui::PopID();
+      if (remove) {
+        pushes.erase(pushes.begin() + static_cast<std::ptrdiff_t>(i));
+        break;
+      }
+    }
+    if (ImGui::SmallButton("add a push")) pushes.emplace_back("1.0,-40,0,0");
+    ImGui::TreePop();
+  }
   ImGui::EndDisabled();
   if (ImGui::TreeNode("fitness weights")) {
     // Live: a running search takes them from its next generation.

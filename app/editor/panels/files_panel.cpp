@@ -1,24 +1,85 @@
-// Files: a path field with Open, the recent files, the animation chooser for files with several
-// animations (glTF), and a hint that files can be dropped onto the window.
+// Files: the project (new, save, save as; its name and whether it has unsaved changes), a path
+// field with Open for motion files and projects, the recent files, the animation chooser for
+// files with several animations (glTF), and a hint that files can be dropped onto the window.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include "editor/panels/panels.h"
+#include "editor/project_model.h"
 
 namespace sinew::editor {
+namespace {
+
+// The save-as field's suggestion: the project beside its clip, named after it.
+std::string suggestedProjectPath(const EditorState& state) {
+  if (!state.project_path.empty()) return state.project_path.string();
+  if (state.file_path.empty()) return "";
+  return (state.file_path.parent_path() / (state.file_path.stem().string() + ".sinew.json")).string();
+}
+
+void drawProject(EditorState& state, FilesPanelState& panel) {
+  const bool unsaved = hasUnsavedChanges(state);
+  const std::string name =
+      state.project_path.empty() ? "untitled project" : state.project_path.filename().string();
+  ImGui::Text("%s%s", name.c_str(), unsaved ? "  (unsaved changes)" : "");
+  if (!state.project_path.empty() && ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("%s", state.project_path.string().c_str());
+  }
+  if (ImGui::Button("New")) newProject(state);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Default settings on the open file (Ctrl+N)");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!state.asset);
+  if (ImGui::Button("Save")) saveOpenProject(state, panel);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+S; an untitled project goes to the path below");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!state.history.canUndo());
+  if (ImGui::Button("Undo")) undo(state);
+  if (state.history.canUndo() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Undo %s (Ctrl+Z)", state.history.undoLabel().c_str());
+  }
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!state.history.canRedo());
+  if (ImGui::Button("Redo")) redo(state);
+  if (state.history.canRedo() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("Redo %s (Ctrl+Shift+Z)", state.history.redoLabel().c_str());
+  }
+  ImGui::EndDisabled();
+  if (panel.save_path.empty()) panel.save_path = suggestedProjectPath(state);
+  ImGui::SetNextItemWidth(-70.0f);
+  ImGui::InputTextWithHint("##saveas", "path/to/project.sinew.json", &panel.save_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save as", ImVec2(-1.0f, 0.0f)) && !panel.save_path.empty()) {
+    saveProjectAs(state, panel.save_path);
+  }
+  ImGui::EndDisabled();
+}
+
+}  // namespace
+
+void saveOpenProject(EditorState& state, FilesPanelState& panel) {
+  if (!state.project_path.empty()) {
+    saveProjectAs(state, state.project_path);
+    return;
+  }
+  if (panel.save_path.empty()) panel.save_path = suggestedProjectPath(state);
+  if (!panel.save_path.empty()) saveProjectAs(state, panel.save_path);
+}
 
 void drawFilesPanel(EditorState& state, FilesPanelState& panel) {
   if (!ImGui::Begin("Files", nullptr, ImGuiWindowFlags_NoCollapse)) {
     ImGui::End();
     return;
   }
-  ImGui::TextDisabled("BVH, glTF (.glb/.gltf): type a path or drop a file on the window");
+  drawProject(state, panel);
+  ImGui::Separator();
+  ImGui::TextDisabled("BVH, glTF (.glb/.gltf) or a project (.json): type a path or drop a file");
   ImGui::SetNextItemWidth(-70.0f);
   const bool enter = ImGui::InputTextWithHint("##path", "path/to/clip.bvh", &panel.path,
                                               ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Open", ImVec2(-1.0f, 0.0f)) || enter) && !panel.path.empty()) {
-    openFile(state, panel.path, panel.animation);
+    if (openAny(state, panel.path, panel.animation)) panel.save_path.clear();
   }
   ImGui::SetNextItemWidth(-70.0f);
   ImGui::InputTextWithHint("##animation", "animation name (glTF, optional)", &panel.animation);
@@ -57,7 +118,7 @@ void drawFilesPanel(EditorState& state, FilesPanelState& panel) {
   }
   if (!chosen.empty()) {
     panel.path = chosen;
-    openFile(state, chosen, panel.animation);
+    if (openAny(state, chosen, panel.animation)) panel.save_path.clear();
   }
   ImGui::End();
 }

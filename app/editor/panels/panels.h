@@ -12,7 +12,11 @@ namespace sinew::editor {
 struct FilesPanelState {
   std::string path;       // the path field
   std::string animation;  // the animation wanted when opening a glTF
+  std::string save_path;  // the "save as" field; filled with a suggestion when empty
 };
+
+// Saves the open project, or an untitled one to the save-as field's path (Ctrl+S).
+void saveOpenProject(EditorState& state, FilesPanelState& panel);
 
 struct SpectrumPanelState {
   int global_k = 5;        // the "all joints" slider

@@ -93,6 +93,7 @@ struct FitnessWeights {
   double upright = 2.0;     // per unit of (1 - lowest cosine of the pelvis's tilt)
   double energy = 0.002;    // per (N^2 m^2 s / kg) / s of squared torque
   Status validate() const;  // the message names the offending field
+  bool operator==(const FitnessWeights&) const = default;
 };
 
 // The weight of term `term` (0..kFitnessTermCount-1, in fitnessTermName order), to read or set.

@@ -1,0 +1,236 @@
+#include "editor/project_model.h"
+
+#include <algorithm>
+#include <map>
+
+#include "sinew/core/file_io.h"
+
+namespace sinew::editor {
+namespace {
+
+// The K most joints have: the project's "harmonics", so that only exceptions are listed.
+int commonK(const std::vector<int>& joint_k, int fallback) {
+  std::map<int, int> counts;
+  for (int k : joint_k) ++counts[k];
+  int best = fallback, best_count = 0;
+  for (const auto& [k, count] : counts) {
+    if (count > best_count) {
+      best = k;
+      best_count = count;
+    }
+  }
+  return std::clamp(best, 1, 64);
+}
+
+std::string wantedFile(const app::Project& project) {
+  return project.clip.empty() ? project.rig : project.clip;
+}
+
+}  // namespace
+
+app::Project captureProject(const EditorState& state) {
+  app::Project project;
+  project.harmonics = state.saved.harmonics;
+  if (state.asset) {
+    if (state.rig_path.empty()) {
+      project.rig = state.file_path.string();
+    } else {
+      project.rig = state.rig_path;
+      project.clip = state.file_path.string();
+    }
+    const motion::Clip* clip = state.clip();
+    if (clip != nullptr && state.asset->clips.size() > 1) project.animation = clip->name;
+  }
+  project.target = state.target_path;
+  if (state.analysis && state.asset) {
+    const std::vector<int>& joint_k = state.analysis->joint_k;
+    project.harmonics = commonK(joint_k, project.harmonics);
+    for (size_t j = 0; j < joint_k.size(); ++j) {
+      if (joint_k[j] != project.harmonics) {
+        project.joint_k[state.asset->skeleton.names[j]] = joint_k[j];
+      }
+    }
+  }
+  const EvolutionSettings& e = state.evolution.settings;
+  project.terrain = e.terrain;
+  project.window_s = e.window_s;
+  project.pushes = e.pushes;
+  project.body = e.body;
+  project.search.minutes = e.minutes;
+  project.search.population = e.population;
+  project.search.no_prior = e.no_prior;
+  project.search.optimizer = e.optimizer;
+  project.search.seed = e.seed;
+  project.search.weights = e.weights;
+  app::ViewSettings& v = project.view;
+  v.speed = state.playback.speed;
+  v.loop = state.playback.loop;
+  v.show_original = state.view.show_original;
+  v.show_model = state.view.show_model;
+  v.model_beside = state.view.model_beside;
+  v.follow = state.view.follow;
+  v.show_grid = state.view.show_grid;
+  v.show_end_sites = state.view.show_end_sites;
+  v.show_population = state.evolution.show_population;
+  return project;
+}
+
+bool applyProject(EditorState& state, const app::Project& project) {
+  const std::string file = wantedFile(project);
+  if (!file.empty() && (!state.asset || std::filesystem::path(file) != state.file_path)) {
+    if (!openFile(state, file, project.animation)) return false;
+  } else if (state.asset && !project.animation.empty()) {
+    const int index = state.asset->findClip(project.animation);
+    if (index < 0) {
+      state.log.warning(file + ": no animation called '" + project.animation + "'; keeping '" +
+                        (state.clip() ? state.clip()->name : std::string()) + "'");
+    } else if (index != state.clip_index) {
+      chooseClip(state, index);
+    }
+  }
+  state.rig_path = project.clip.empty() ? std::string() : project.rig;
+  state.target_path = project.target;
+
+  if (state.analysis && state.asset) {
+    const motion::Skeleton& skeleton = state.asset->skeleton;
+    std::vector<int> joint_k(static_cast<size_t>(skeleton.jointCount()), project.harmonics);
+    for (const auto& [name, k] : project.joint_k) {
+      const int joint = skeleton.findJoint(name);
+      if (joint < 0) {
+        state.log.warning("joint_harmonics: " + state.file_name + " has no joint called '" + name +
+                          "'; ignored");
+        continue;
+      }
+      joint_k[static_cast<size_t>(joint)] = k;
+    }
+    if (joint_k != state.analysis->joint_k) setJointK(state, std::move(joint_k));
+  }
+
+  EvolutionSettings& e = state.evolution.settings;
+  const bool weights_changed = !(e.weights == project.search.weights);
+  e.terrain = project.terrain;
+  e.window_s = project.window_s;
+  e.pushes = project.pushes;
+  e.body = project.body;
+  e.minutes = project.search.minutes;
+  e.population = project.search.population;
+  e.no_prior = project.search.no_prior;
+  e.optimizer = project.search.optimizer;
+  e.seed = project.search.seed;
+  e.weights = project.search.weights;
+  if (weights_changed && state.evolution.session && !state.evolution.session->finished()) {
+    setEvolutionWeights(state);
+  }
+  const app::ViewSettings& v = project.view;
+  state.playback.speed = v.speed;
+  state.playback.loop = v.loop;
+  state.view.show_original = v.show_original;
+  state.view.show_model = v.show_model;
+  state.view.model_beside = v.model_beside;
+  state.view.follow = v.follow;
+  state.view.show_grid = v.show_grid;
+  state.view.show_end_sites = v.show_end_sites;
+  state.evolution.show_population = v.show_population;
+  return true;
+}
+
+bool openProject(EditorState& state, const std::filesystem::path& path) {
+  Result<app::Project> project = app::loadProject(path);
+  if (!project.ok()) {
+    state.log.error(project.message());
+    return false;
+  }
+  if (!applyProject(state, project.value())) {
+    state.log.error(path.string() +
+                    ": the project's files did not open (see above); nothing changed");
+    return false;
+  }
+  state.project_path = path;
+  state.saved = captureProject(state);
+  state.history.reset(state.saved);
+  rememberRecent(state, path.string());
+  state.log.info("opened project " + path.string());
+  return true;
+}
+
+bool saveProjectAs(EditorState& state, const std::filesystem::path& path) {
+  const app::Project project = captureProject(state);
+  if (project.rig.empty()) {
+    state.log.error("save: open a rig first (a project names its rig)");
+    return false;
+  }
+  if (Status saved = app::saveProject(project, path); !saved.ok()) {
+    state.log.error("save: " + saved.message());
+    return false;
+  }
+  state.project_path = path;
+  state.saved = project;
+  rememberRecent(state, path.string());
+  state.log.info("saved project " + path.string());
+  return true;
+}
+
+bool openAny(EditorState& state, const std::filesystem::path& path, const std::string& animation) {
+  if (path.extension() == ".json") return openProject(state, path);
+  if (!openFile(state, path, animation)) return false;
+  startUntitled(state);
+  return true;
+}
+
+void startUntitled(EditorState& state) {
+  state.project_path.clear();
+  state.saved = captureProject(state);
+  state.history.reset(state.saved);
+}
+
+void newProject(EditorState& state) {
+  app::Project defaults;
+  const app::Project current = captureProject(state);
+  defaults.rig = current.rig;
+  defaults.clip = current.clip;
+  defaults.animation = current.animation;
+  if (!defaults.rig.empty()) applyProject(state, defaults);
+  startUntitled(state);
+  state.log.info("new project on " +
+                 (state.file_name.empty() ? std::string("nothing") : state.file_name));
+}
+
+bool hasUnsavedChanges(const EditorState& state) {
+  return !(captureProject(state) == state.saved);
+}
+
+void recordHistory(EditorState& state) {
+  state.history.record(captureProject(state));
+}
+
+bool undo(EditorState& state) {
+  std::optional<History::Step> step = state.history.undo();
+  if (!step) {
+    state.log.info("undo: nothing to undo");
+    return false;
+  }
+  applyProject(state, step->value);
+  state.log.info("undo: " + step->what);
+  return true;
+}
+
+bool redo(EditorState& state) {
+  std::optional<History::Step> step = state.history.redo();
+  if (!step) {
+    state.log.info("redo: nothing to redo");
+    return false;
+  }
+  applyProject(state, step->value);
+  state.log.info("redo: " + step->what);
+  return true;
+}
+
+Status writeRecovery(const EditorState& state, const std::filesystem::path& path) {
+  const app::Project project = captureProject(state);
+  if (project.rig.empty()) return Status();
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  return writeFileAtomically(path, app::projectJson(project, {}));
+}
+
+}  // namespace sinew::editor

@@ -1,0 +1,370 @@
+#include "project/project.h"
+
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "sinew/core/file_io.h"
+
+namespace sinew::app {
+namespace {
+
+using nlohmann::json;
+
+Result<double> parseNumber(const std::string& text, const std::string& context) {
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument(text);
+    return value;
+  } catch (const std::exception&) {
+    return Status::error(context + ": '" + text + "' is not a number");
+  }
+}
+
+std::vector<std::string> splitCommas(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) parts.push_back(item);
+  return parts;
+}
+
+// A JSON value of the expected type, or a message naming the field.
+template <class T>
+Status read(const json& object, const char* key, T& out, const std::string& where) {
+  if (!object.contains(key)) return Status();
+  try {
+    out = object.at(key).get<T>();
+    return Status();
+  } catch (const json::exception&) {
+    return Status::error(where + key + ": expected " +
+                         (std::is_same_v<T, std::string> ? "a string"
+                          : std::is_same_v<T, bool>      ? "true or false"
+                          : std::is_arithmetic_v<T>      ? "a number"
+                                                         : "a list of strings") +
+                         ", got " + object.at(key).dump());
+  }
+}
+
+std::string relativeTo(const std::string& file, const std::filesystem::path& base) {
+  if (file.empty() || base.empty()) return file;
+  const std::filesystem::path path(file);
+  if (!path.is_absolute()) return file;
+  const std::filesystem::path relative = path.lexically_relative(base);
+  return relative.empty() ? file : relative.generic_string();
+}
+
+json weightsJson(const search::FitnessWeights& weights) {
+  json out = json::object();
+  search::FitnessWeights copy = weights;
+  for (int term = 0; term < search::kFitnessTermCount; ++term) {
+    out[search::fitnessTermName(term)] = search::fitnessWeight(copy, term);
+  }
+  return out;
+}
+
+Status readWeights(const json& object, search::FitnessWeights& weights, const std::string& where) {
+  if (!object.is_object()) return Status::error(where + "weights: expected an object");
+  for (const auto& [key, value] : object.items()) {
+    int term = -1;
+    for (int t = 0; t < search::kFitnessTermCount; ++t) {
+      if (key == search::fitnessTermName(t)) term = t;
+    }
+    if (term < 0) return Status::error(where + "weights: unknown term '" + key + "'");
+    if (!value.is_number()) return Status::error(where + "weights." + key + ": expected a number");
+    search::fitnessWeight(weights, term) = value.get<double>();
+  }
+  if (Status status = weights.validate(); !status.ok())
+    return Status::error(where + "weights: " + status.message());
+  return Status();
+}
+
+}  // namespace
+
+Result<Project> parseProject(const std::string& text, const std::filesystem::path& base,
+                             const std::string& name) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    return Status::error(name + ": not JSON: " + e.what());
+  }
+  const std::string where = name + ": ";
+  if (!document.is_object()) return Status::error(where + "expected a JSON object");
+  if (document.value("format", json()) != "sinew.project")
+    return Status::error(where + "format: expected \"sinew.project\"");
+  const json version = document.value("version", json());
+  if (!version.is_number_integer() || version.get<int>() < 1)
+    return Status::error(where + "version: expected a whole number (1.." +
+                         std::to_string(kProjectVersion) + ")");
+  if (version.get<int>() > kProjectVersion)
+    return Status::error(where + "version: " + version.dump() +
+                         " is newer than this sinew reads (1.." + std::to_string(kProjectVersion) +
+                         "); update sinew");
+
+  Project project;
+  Status status;
+  auto check = [&](Status s) {
+    if (status.ok() && !s.ok()) status = std::move(s);
+  };
+  if (!document.contains("rig")) return Status::error(where + "rig: missing (the rig file)");
+  check(read(document, "rig", project.rig, where));
+  check(read(document, "clip", project.clip, where));
+  check(read(document, "animation", project.animation, where));
+  check(read(document, "target", project.target, where));
+  check(read(document, "harmonics", project.harmonics, where));
+  check(read(document, "terrain", project.terrain, where));
+  check(read(document, "window_s", project.window_s, where));
+  check(read(document, "pushes", project.pushes, where));
+  if (document.contains("joint_harmonics")) {
+    const json& joints = document.at("joint_harmonics");
+    if (!joints.is_object()) return Status::error(where + "joint_harmonics: expected an object");
+    for (const auto& [joint, k] : joints.items()) {
+      if (!k.is_number_integer() || k.get<int>() < 0 || k.get<int>() > 64)
+        return Status::error(where + "joint_harmonics." + joint +
+                             ": expected a whole number 0..64");
+      project.joint_k[joint] = k.get<int>();
+    }
+  }
+  if (document.contains("body")) {
+    const json& body = document.at("body");
+    if (!body.is_object()) return Status::error(where + "body: expected an object");
+    check(read(body, "masses", project.body.masses, where + "body."));
+    check(read(body, "fixed", project.body.fixed, where + "body."));
+    check(read(body, "hinge_limits", project.body.hinge_limits, where + "body."));
+  }
+  if (document.contains("search")) {
+    const json& search = document.at("search");
+    const std::string in = where + "search.";
+    if (!search.is_object()) return Status::error(where + "search: expected an object");
+    check(read(search, "minutes", project.search.minutes, in));
+    check(read(search, "population", project.search.population, in));
+    check(read(search, "no_prior", project.search.no_prior, in));
+    check(read(search, "optimizer", project.search.optimizer, in));
+    check(read(search, "seed", project.search.seed, in));
+    if (search.contains("weights"))
+      check(readWeights(search.at("weights"), project.search.weights, in));
+  }
+  if (document.contains("view")) {
+    const json& view = document.at("view");
+    const std::string in = where + "view.";
+    if (!view.is_object()) return Status::error(where + "view: expected an object");
+    ViewSettings& v = project.view;
+    check(read(view, "speed", v.speed, in));
+    check(read(view, "loop", v.loop, in));
+    check(read(view, "show_original", v.show_original, in));
+    check(read(view, "show_model", v.show_model, in));
+    check(read(view, "model_beside", v.model_beside, in));
+    check(read(view, "follow", v.follow, in));
+    check(read(view, "show_grid", v.show_grid, in));
+    check(read(view, "show_end_sites", v.show_end_sites, in));
+    check(read(view, "show_population", v.show_population, in));
+  }
+  if (!status.ok()) return status;
+
+  auto resolve = [&](std::string& file) {
+    if (file.empty()) return;
+    const std::filesystem::path path(file);
+    file = (path.is_absolute() ? path : base / path).lexically_normal().string();
+  };
+  resolve(project.rig);
+  resolve(project.clip);
+  resolve(project.target);
+  if (project.rig.empty()) return Status::error(where + "rig: empty (the rig file)");
+  if (Status valid = validateProject(project); !valid.ok())
+    return Status::error(where + valid.message());
+  return project;
+}
+
+Result<Project> loadProject(const std::filesystem::path& path) {
+  Result<std::string> text = readFile(path);
+  if (!text.ok()) return text.status();
+  return parseProject(text.value(), path.parent_path(), path.string());
+}
+
+Status validateProject(const Project& project) {
+  if (project.harmonics < 1 || project.harmonics > 64)
+    return Status::error("harmonics: must be 1..64, got " + std::to_string(project.harmonics));
+  if (!(project.window_s >= 0.5 && project.window_s <= 600.0))
+    return Status::error("window_s: must be 0.5..600 seconds");
+  if (Result<physics::TerrainSettings> t = parseTerrain(project.terrain, "terrain"); !t.ok())
+    return t.status();
+  for (const std::string& push : project.pushes) {
+    if (Result<physics::Push> p = parsePush(push, "pushes"); !p.ok()) return p.status();
+  }
+  if (Result<physics::BodyPlanSettings> b = parseBodyOverrides(project.body); !b.ok())
+    return Status::error("body: " + b.message());
+  const SearchSettings& s = project.search;
+  if (!(s.minutes > 0.0 && s.minutes <= 10000.0))
+    return Status::error("search.minutes: must be more than 0 (and at most 10000)");
+  if (s.population < 0 || s.population > 100000)
+    return Status::error("search.population: must be 0 (the optimiser's default) or more");
+  if (s.optimizer != "cmaes" && s.optimizer != "ga")
+    return Status::error("search.optimizer: expected \"cmaes\" or \"ga\", got \"" + s.optimizer +
+                         "\"");
+  if (Status w = s.weights.validate(); !w.ok())
+    return Status::error("search.weights: " + w.message());
+  if (!(project.view.speed >= 0.1 && project.view.speed <= 4.0))
+    return Status::error("view.speed: must be 0.1..4");
+  return Status();
+}
+
+std::string projectJson(const Project& project, const std::filesystem::path& base) {
+  json out = json::object();
+  out["format"] = "sinew.project";
+  out["version"] = kProjectVersion;
+  out["rig"] = relativeTo(project.rig, base);
+  if (!project.clip.empty()) out["clip"] = relativeTo(project.clip, base);
+  if (!project.animation.empty()) out["animation"] = project.animation;
+  if (!project.target.empty()) out["target"] = relativeTo(project.target, base);
+  out["harmonics"] = project.harmonics;
+  if (!project.joint_k.empty()) out["joint_harmonics"] = project.joint_k;
+  out["terrain"] = project.terrain;
+  out["window_s"] = project.window_s;
+  out["pushes"] = project.pushes;
+  out["body"] = {{"masses", project.body.masses},
+                 {"fixed", project.body.fixed},
+                 {"hinge_limits", project.body.hinge_limits}};
+  const SearchSettings& s = project.search;
+  out["search"] = {{"minutes", s.minutes},   {"population", s.population},
+                   {"no_prior", s.no_prior}, {"optimizer", s.optimizer},
+                   {"seed", s.seed},         {"weights", weightsJson(s.weights)}};
+  const ViewSettings& v = project.view;
+  out["view"] = {{"speed", v.speed},
+                 {"loop", v.loop},
+                 {"show_original", v.show_original},
+                 {"show_model", v.show_model},
+                 {"model_beside", v.model_beside},
+                 {"follow", v.follow},
+                 {"show_grid", v.show_grid},
+                 {"show_end_sites", v.show_end_sites},
+                 {"show_population", v.show_population}};
+  return out.dump(2) + "\n";
+}
+
+Status saveProject(const Project& project, const std::filesystem::path& path) {
+  if (Status valid = validateProject(project); !valid.ok())
+    return Status::error(path.string() + ": not saved: " + valid.message());
+  const std::filesystem::path base = std::filesystem::absolute(path).parent_path();
+  return writeFileAtomically(path, projectJson(project, base));
+}
+
+Result<physics::TerrainSettings> parseTerrain(const std::string& text, const std::string& field) {
+  physics::TerrainSettings t;
+  const size_t colon = text.find(':');
+  const std::string kind = text.substr(0, colon);
+  std::vector<double> values;
+  if (colon != std::string::npos) {
+    for (const std::string& item : splitCommas(text.substr(colon + 1))) {
+      Result<double> value = parseNumber(item, field + " '" + text + "'");
+      if (!value.ok()) return value.status();
+      values.push_back(value.value());
+    }
+  }
+  auto want = [&](size_t most) -> Status {
+    if (values.size() > most)
+      return Status::error(field + " " + kind + ": at most " + std::to_string(most) +
+                           " values, got " + std::to_string(values.size()));
+    return Status();
+  };
+  using Kind = physics::TerrainSettings::Kind;
+  if (kind == "flat") {
+    if (Status s = want(0); !s.ok()) return s;
+  } else if (kind == "slope") {
+    if (Status s = want(1); !s.ok()) return s;
+    t.kind = Kind::kSlope;
+    if (!values.empty()) t.slope_deg = values[0];
+  } else if (kind == "steps") {
+    if (Status s = want(2); !s.ok()) return s;
+    t.kind = Kind::kSteps;
+    if (values.size() > 0) t.step_height_m = values[0];
+    if (values.size() > 1) t.step_depth_m = values[1];
+  } else if (kind == "rough") {
+    if (Status s = want(2); !s.ok()) return s;
+    t.kind = Kind::kRough;
+    if (values.size() > 0) t.amplitude_m = values[0];
+    if (values.size() > 1) {
+      if (values[1] < 0.0 ||
+          values[1] != static_cast<double>(static_cast<std::uint64_t>(values[1])))
+        return Status::error(field + " rough: the seed must be a whole number >= 0");
+      t.seed = static_cast<std::uint64_t>(values[1]);
+    }
+  } else {
+    return Status::error(field + ": unknown kind '" + kind +
+                         "' (flat, slope:DEG, steps:HEIGHT,DEPTH, rough:AMPLITUDE,SEED)");
+  }
+  if (Status s = t.validate(); !s.ok()) return Status::error(field + ": " + s.message());
+  return t;
+}
+
+Result<physics::Push> parsePush(const std::string& text, const std::string& field) {
+  const std::vector<std::string> parts = splitCommas(text);
+  if (parts.size() != 4 && parts.size() != 5)
+    return Status::error(field + " '" + text + "': expected TIME,X,Y,Z[,LINK] (seconds, N s)");
+  double v[4];
+  for (size_t i = 0; i < 4; ++i) {
+    Result<double> value = parseNumber(parts[i], field + " '" + text + "'");
+    if (!value.ok()) return value.status();
+    v[i] = value.value();
+  }
+  physics::Push push;
+  push.time_s = v[0];
+  push.impulse_ns = glm::dvec3(v[1], v[2], v[3]);
+  if (parts.size() == 5) push.link = parts[4];
+  return push;
+}
+
+Result<physics::SimulationSettings> simulationSettings(double seconds, const std::string& terrain,
+                                                       const std::vector<std::string>& pushes,
+                                                       const std::string& terrain_field,
+                                                       const std::string& push_field) {
+  physics::SimulationSettings simulation;
+  simulation.seconds = seconds;
+  Result<physics::TerrainSettings> ground = parseTerrain(terrain, terrain_field);
+  if (!ground.ok()) return ground.status();
+  simulation.world.terrain = ground.value();
+  for (const std::string& text : pushes) {
+    Result<physics::Push> push = parsePush(text, push_field);
+    if (!push.ok()) return push.status();
+    simulation.pushes.push_back(push.value());
+  }
+  return simulation;
+}
+
+Result<physics::BodyPlanSettings> parseBodyOverrides(const BodyOverrides& body) {
+  physics::BodyPlanSettings s;
+  auto split = [](const std::string& text,
+                  const char* flag) -> Result<std::pair<std::string, std::string>> {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+      return Status::error(std::string(flag) + " '" + text + "': expected NAME=VALUE");
+    return std::make_pair(text.substr(0, eq), text.substr(eq + 1));
+  };
+  for (const std::string& m : body.masses) {
+    auto parts = split(m, "--mass");
+    if (!parts.ok()) return parts.status();
+    Result<double> kg = parseNumber(parts.value().second, "--mass '" + m + "'");
+    if (!kg.ok()) return kg.status();
+    s.mass_overrides.emplace_back(parts.value().first, kg.value());
+  }
+  for (const std::string& f : body.fixed)
+    s.type_overrides.emplace_back(f, physics::JointType::kFixed);
+  for (const std::string& h : body.hinge_limits) {
+    auto parts = split(h, "--hinge-limits");
+    if (!parts.ok()) return parts.status();
+    const std::vector<std::string> range = splitCommas(parts.value().second);
+    if (range.size() != 2) return Status::error("--hinge-limits '" + h + "': expected NAME=LO,HI");
+    Result<double> lo = parseNumber(range[0], "--hinge-limits '" + h + "'");
+    Result<double> hi = parseNumber(range[1], "--hinge-limits '" + h + "'");
+    if (!lo.ok()) return lo.status();
+    if (!hi.ok()) return hi.status();
+    constexpr double kRad = 3.14159265358979323846 / 180.0;
+    s.hinge_limit_overrides.emplace_back(parts.value().first,
+                                         std::make_pair(lo.value() * kRad, hi.value() * kRad));
+  }
+  if (Status v = s.validate(); !v.ok()) return Status::error("body overrides: " + v.message());
+  return s;
+}
+
+}  // namespace sinew::app

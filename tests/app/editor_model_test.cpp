@@ -1,0 +1,355 @@
+// The editor's command and state model without a window: projects (load, save, round trip, bad
+// files), undo and redo of settings, unsaved changes, the recovery file and the preferences.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "editor/editor_state.h"
+#include "editor/evolution.h"
+#include "editor/history.h"
+#include "editor/preferences.h"
+#include "editor/project_model.h"
+#include "project/project.h"
+#include "support/test_support.h"
+
+namespace sinew {
+namespace {
+
+std::filesystem::path defaultProject() {
+  return test::sourceDir() / "assets" / "default.sinew.json";
+}
+
+int jointIndex(const editor::EditorState& state, const std::string& name) {
+  return state.asset->skeleton.findJoint(name);
+}
+
+TEST(ProjectFileTest, TheBundledVersion1ProjectLoadsWithDefaults) {
+  Result<app::Project> project = app::loadProject(defaultProject());
+  ASSERT_TRUE(project.ok()) << project.message();
+  const app::Project& p = project.value();
+  EXPECT_EQ(std::filesystem::path(p.rig), test::sourceDir() / "assets" / "biped_walk.bvh");
+  EXPECT_EQ(p.harmonics, 5);
+  EXPECT_EQ(p.terrain, "flat");
+  EXPECT_EQ(p.window_s, 10.0);
+  EXPECT_TRUE(p.joint_k.empty());
+  EXPECT_EQ(p.search, app::SearchSettings());
+  EXPECT_EQ(p.view, app::ViewSettings());
+}
+
+TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
+  test::TempDir dir;
+  app::Project p;
+  p.rig = (test::sourceDir() / "assets" / "biped_walk.bvh").string();
+  p.animation = "biped_walk";
+  p.harmonics = 4;
+  p.joint_k = {{"LeftUpLeg", 7}, {"Head", 0}};
+  p.terrain = "slope:3";
+  p.window_s = 6.5;
+  p.pushes = {"1.5,-30,0,0,Spine", "3,0,0,20"};
+  p.body.masses = {"Head=6.5"};
+  p.body.fixed = {"LeftToe"};
+  p.body.hinge_limits = {"LeftLeg=-150,5"};
+  p.search.minutes = 7.5;
+  p.search.population = 24;
+  p.search.no_prior = true;
+  p.search.optimizer = "ga";
+  p.search.seed = 42;
+  p.search.weights.fall = 3.0;
+  p.search.weights.energy = 0.01;
+  p.view.speed = 0.5;
+  p.view.loop = false;
+  p.view.show_grid = false;
+  p.view.show_population = false;
+  const std::filesystem::path file = dir / "walk.sinew.json";
+  ASSERT_TRUE(app::saveProject(p, file).ok());
+  // The rig is written relative to the project's folder, so the pair can move together.
+  EXPECT_NE(test::readText(file).find("\"version\": 2"), std::string::npos);
+  Result<app::Project> back = app::loadProject(file);
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_EQ(back.value(), p);
+}
+
+TEST(ProjectFileTest, BadProjectsNameTheFileAndTheField) {
+  test::TempDir dir;
+  struct Case {
+    std::string json, expected;
+  };
+  const std::vector<Case> cases = {
+      {R"({"format": "sinew.project", "version": 9, "rig": "a.bvh"})", "version: 9 is newer"},
+      {R"({"format": "other", "version": 1, "rig": "a.bvh"})", "format: expected"},
+      {R"({"format": "sinew.project", "version": 2})", "rig: missing"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "harmonics": 0})",
+       "harmonics: must be 1..64"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "harmonics": "five"})",
+       "harmonics: expected a number"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "terrain": "lava"})",
+       "terrain: unknown kind 'lava'"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "pushes": ["1,2"]})",
+       "pushes '1,2': expected TIME,X,Y,Z"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "body": {"masses": ["Head"]}})",
+       "--mass 'Head': expected NAME=VALUE"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "search": {"weights": {"grace": 1}}})",
+       "search.weights: unknown term 'grace'"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "search": {"optimizer": "sgd"}})",
+       "search.optimizer: expected"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "joint_harmonics": {"Head": -1}})",
+       "joint_harmonics.Head: expected a whole number"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "view": {"speed": 9}})",
+       "view.speed: must be 0.1..4"},
+      {R"({"format": "sinew.project", "version": 2, "rig": )", "not JSON"},
+  };
+  for (const Case& c : cases) {
+    const std::filesystem::path file = dir / "bad.sinew.json";
+    test::writeText(file, c.json);
+    Result<app::Project> project = app::loadProject(file);
+    ASSERT_FALSE(project.ok()) << c.json;
+    EXPECT_NE(project.message().find(file.string() + ": "), std::string::npos) << project.message();
+    EXPECT_NE(project.message().find(c.expected), std::string::npos)
+        << "expected '" << c.expected << "' in: " << project.message();
+  }
+}
+
+TEST(ProjectFileTest, AFailedSaveKeepsThePreviousFile) {
+  test::TempDir dir;
+  const std::filesystem::path file = dir / "keep.sinew.json";
+  test::writeText(file, "previous contents");
+  app::Project p;
+  p.rig = "walk.bvh";
+  p.terrain = "lava";  // does not validate: nothing is written
+  const Status saved = app::saveProject(p, file);
+  ASSERT_FALSE(saved.ok());
+  EXPECT_NE(saved.message().find("terrain: unknown kind"), std::string::npos) << saved.message();
+  EXPECT_EQ(test::readText(file), "previous contents");
+  // A folder that cannot be written: refused with the path, the old file untouched elsewhere.
+  p.terrain = "flat";
+  EXPECT_FALSE(app::saveProject(p, dir / "no" / "such" / "folder" / "x.sinew.json").ok());
+}
+
+TEST(HistoryTest, RecordsStepsUndoesAndRedoesThemAndForgetsRedoOnANewChange) {
+  editor::History history;
+  app::Project a;
+  a.rig = "walk.bvh";
+  history.reset(a);
+  EXPECT_FALSE(history.record(a));  // nothing changed
+  app::Project b = a;
+  b.joint_k["LeftUpLeg"] = 3;
+  EXPECT_TRUE(history.record(b));
+  app::Project c = b;
+  c.search.weights.fall = 4.0;
+  EXPECT_TRUE(history.record(c));
+  EXPECT_EQ(history.undoLabel(), "weight fall 10 -> 4");
+  std::optional<editor::History::Step> step = history.undo();
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->value, b);
+  EXPECT_EQ(step->what, "weight fall 10 -> 4");
+  step = history.undo();
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->value, a);
+  EXPECT_EQ(step->what, "K of LeftUpLeg 5 -> 3");
+  EXPECT_FALSE(history.undo());
+  step = history.redo();
+  ASSERT_TRUE(step);
+  EXPECT_EQ(step->value, b);
+  app::Project d = b;
+  d.view.show_grid = false;
+  EXPECT_TRUE(history.record(d));
+  EXPECT_FALSE(history.canRedo());  // a new change after undo drops the redo branch
+  EXPECT_EQ(history.undoLabel(), "grid off");
+}
+
+TEST(HistoryTest, KeepsAtMostItsLimit) {
+  editor::History history(3);
+  app::Project p;
+  history.reset(p);
+  for (int seed = 2; seed <= 10; ++seed) {
+    p.search.seed = static_cast<std::uint64_t>(seed);
+    history.record(p);
+  }
+  int undone = 0;
+  while (history.undo()) ++undone;
+  EXPECT_EQ(undone, 3);
+  EXPECT_EQ(history.current().search.seed, 7u);
+}
+
+class EditorModelTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(editor::openProject(state, defaultProject()));
+    ASSERT_TRUE(state.analysis);
+  }
+  editor::EditorState state;
+};
+
+TEST_F(EditorModelTest, OpeningTheDefaultProjectLeavesNoUnsavedChanges) {
+  EXPECT_EQ(state.project_path, defaultProject());
+  EXPECT_FALSE(editor::hasUnsavedChanges(state));
+  EXPECT_FALSE(state.history.canUndo());
+  const app::Project now = editor::captureProject(state);
+  EXPECT_EQ(now.harmonics, 5);
+  EXPECT_TRUE(now.joint_k.empty());
+}
+
+TEST_F(EditorModelTest, UndoAndRedoRestoreTheModelAndItsError) {
+  const double error_k5 = state.analysis->total.rot_err_deg_rms;
+  const int leg = jointIndex(state, "LeftUpLeg");
+  ASSERT_GE(leg, 0);
+  std::vector<int> k = state.analysis->joint_k;
+  k[static_cast<size_t>(leg)] = 1;
+  editor::setJointK(state, k);
+  editor::recordHistory(state);
+  const double error_k1 = state.analysis->total.rot_err_deg_rms;
+  EXPECT_GT(error_k1, error_k5 + 0.05);  // the thigh with one harmonic is visibly worse
+  EXPECT_TRUE(editor::hasUnsavedChanges(state));
+  EXPECT_EQ(state.history.undoLabel(), "K of LeftUpLeg 5 -> 1");
+
+  ASSERT_TRUE(editor::undo(state));
+  EXPECT_EQ(state.analysis->joint_k[static_cast<size_t>(leg)], 5);
+  EXPECT_DOUBLE_EQ(state.analysis->total.rot_err_deg_rms, error_k5);
+  EXPECT_FALSE(editor::hasUnsavedChanges(state));
+  EXPECT_EQ(state.log.lines().back().text, "undo: K of LeftUpLeg 5 -> 1");
+
+  ASSERT_TRUE(editor::redo(state));
+  EXPECT_EQ(state.analysis->joint_k[static_cast<size_t>(leg)], 1);
+  EXPECT_DOUBLE_EQ(state.analysis->total.rot_err_deg_rms, error_k1);
+  editor::recordHistory(state);  // the main loop's next frame: applying a step is not a new step
+  EXPECT_TRUE(state.history.canRedo() == false && state.history.canUndo());
+}
+
+TEST_F(EditorModelTest, EverySettingIsOneUndoStepAndADragIsOne) {
+  // Several changes between two records (a slider dragged over many frames) are one step.
+  state.evolution.settings.weights.tracking = 1.0;
+  state.evolution.settings.weights.tracking = 2.0;
+  state.evolution.settings.weights.tracking = 3.0;
+  editor::recordHistory(state);
+  state.view.show_grid = false;
+  editor::recordHistory(state);
+  state.playback.speed = 0.25;
+  editor::recordHistory(state);
+  state.evolution.settings.terrain = "steps:0.05,0.6";
+  editor::recordHistory(state);
+  state.evolution.settings.pushes.push_back("1,-40,0,0");
+  editor::recordHistory(state);
+  state.evolution.settings.optimizer = "ga";
+  editor::recordHistory(state);
+  // Playback position and play/pause are not settings: no step.
+  state.playback.time_s = 1.0;
+  state.playback.playing = false;
+  editor::recordHistory(state);
+
+  std::vector<std::string> undone;
+  while (state.history.canUndo()) {
+    undone.push_back(state.history.undoLabel());
+    ASSERT_TRUE(editor::undo(state));
+  }
+  EXPECT_EQ(undone,
+            (std::vector<std::string>{"optimizer ga", "pushes", "terrain steps:0.05,0.6",
+                                      "speed 0.25x", "grid off", "weight tracking 5 -> 3"}));
+  EXPECT_EQ(state.evolution.settings.weights.tracking, 5.0);
+  EXPECT_TRUE(state.view.show_grid);
+  EXPECT_EQ(state.playback.speed, 1.0);
+  EXPECT_EQ(state.evolution.settings.terrain, "flat");
+  EXPECT_TRUE(state.evolution.settings.pushes.empty());
+  EXPECT_EQ(state.evolution.settings.optimizer, "cmaes");
+  EXPECT_FALSE(editor::hasUnsavedChanges(state));
+}
+
+TEST_F(EditorModelTest, ASavedProjectReopensAsItWasLeft) {
+  test::TempDir dir;
+  const int head = jointIndex(state, "Head");
+  std::vector<int> k = state.analysis->joint_k;
+  k[static_cast<size_t>(head)] = 2;
+  editor::setJointK(state, k);
+  state.evolution.settings.weights.energy = 0.01;
+  state.evolution.settings.terrain = "slope:2";
+  state.evolution.settings.window_s = 6.0;
+  state.view.model_beside = false;
+  const double error = state.analysis->total.rot_err_deg_rms;
+  const std::filesystem::path file = dir / "mine.sinew.json";
+  ASSERT_TRUE(editor::saveProjectAs(state, file));
+  EXPECT_FALSE(editor::hasUnsavedChanges(state));
+  EXPECT_EQ(state.recent_files.front(), file.string());
+
+  editor::EditorState reopened;
+  ASSERT_TRUE(editor::openProject(reopened, file));
+  EXPECT_EQ(editor::captureProject(reopened), editor::captureProject(state));
+  EXPECT_EQ(reopened.analysis->joint_k, k);
+  EXPECT_DOUBLE_EQ(reopened.analysis->total.rot_err_deg_rms, error);
+  EXPECT_EQ(reopened.evolution.settings.terrain, "slope:2");
+  EXPECT_FALSE(reopened.view.model_beside);
+  EXPECT_FALSE(editor::hasUnsavedChanges(reopened));
+}
+
+TEST_F(EditorModelTest, ABrokenProjectChangesNothingAndIsNamedInTheLog) {
+  test::TempDir dir;
+  const std::filesystem::path file = dir / "broken.sinew.json";
+  test::writeText(
+      file, R"({"format": "sinew.project", "version": 2, "rig": "walk.bvh", "window_s": 0.1})");
+  const app::Project before = editor::captureProject(state);
+  EXPECT_FALSE(editor::openProject(state, file));
+  EXPECT_EQ(editor::captureProject(state), before);
+  EXPECT_EQ(state.project_path, defaultProject());
+  EXPECT_EQ(state.log.lines().back().level, editor::LogLevel::kError);
+  EXPECT_NE(state.log.lines().back().text.find(file.string() + ": window_s"), std::string::npos)
+      << state.log.lines().back().text;
+  // A project whose rig is missing: the open fails, the state stays.
+  test::writeText(file, R"({"format": "sinew.project", "version": 2, "rig": "missing.bvh"})");
+  EXPECT_FALSE(editor::openProject(state, file));
+  EXPECT_EQ(editor::captureProject(state), before);
+}
+
+TEST_F(EditorModelTest, TheSearchUsesTheProjectsPhysics) {
+  editor::EvolutionSettings& settings = state.evolution.settings;
+  settings.terrain = "slope:2";
+  settings.pushes = {"0.5,-20,0,0"};
+  settings.body.masses = {"Head=9"};
+  settings.window_s = 2.0;
+  settings.minutes = 0.05;
+  settings.optimizer = "ga";
+  ASSERT_TRUE(editor::startEvolution(state));
+  const search::Problem& problem = state.evolution.session->problem();
+  EXPECT_EQ(problem.simulation.world.terrain.kind, physics::TerrainSettings::Kind::kSlope);
+  EXPECT_EQ(problem.simulation.world.terrain.slope_deg, 2.0);
+  ASSERT_EQ(problem.simulation.pushes.size(), 1u);
+  EXPECT_EQ(problem.simulation.pushes[0].impulse_ns.x, -20.0);
+  EXPECT_EQ(state.evolution.session->settings().optimizer, "ga");
+  editor::stopEvolution(state);
+  // A bad setting is refused with its field, and nothing starts.
+  settings.terrain = "lava";
+  EXPECT_FALSE(editor::startEvolution(state));
+  EXPECT_NE(state.log.lines().back().text.find("terrain: unknown kind 'lava'"), std::string::npos);
+}
+
+TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {
+  test::TempDir dir;
+  state.evolution.settings.seed = 77;
+  const std::filesystem::path file = dir / "recovery.sinew.json";
+  ASSERT_TRUE(editor::writeRecovery(state, file).ok());
+  Result<app::Project> recovered = app::loadProject(file);
+  ASSERT_TRUE(recovered.ok()) << recovered.message();
+  EXPECT_EQ(recovered.value(), editor::captureProject(state));
+}
+
+TEST(PreferencesTest, RoundTripAndDefaultsAndBrokenFiles) {
+  test::TempDir dir;
+  const std::filesystem::path file = dir / "sub" / "editor.json";
+  Result<editor::Preferences> missing = editor::loadPreferences(file);
+  ASSERT_TRUE(missing.ok());
+  EXPECT_EQ(missing.value(), editor::Preferences());
+  editor::Preferences p;
+  p.recent_files = {"/a/walk.bvh", "/b/run.sinew.json"};
+  p.layout.left_width = 300.0f;
+  p.layout.spectrum_fraction = 0.5f;
+  p.window_width = 1280;
+  p.window_height = 720;
+  ASSERT_TRUE(editor::savePreferences(p, file).ok());
+  Result<editor::Preferences> back = editor::loadPreferences(file);
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_EQ(back.value(), p);
+  test::writeText(file, R"({"window_width": "wide"})");
+  Result<editor::Preferences> broken = editor::loadPreferences(file);
+  ASSERT_FALSE(broken.ok());
+  EXPECT_NE(broken.message().find(file.string()), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sinew
