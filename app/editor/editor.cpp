@@ -8,12 +8,12 @@
 #include <iostream>
 #include <vector>
 
-#include "editor/gl.h"  // before GLFW: it defines GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <imgui_internal.h>  // FindWindowByName: the size a user dragged a panel to
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>  // FindWindowByName: the size a user dragged a panel to
+#include "editor/gl.h"       // before GLFW: it defines GLFW_INCLUDE_NONE
 
 #include "editor/camera.h"
 #include "editor/editor_state.h"
@@ -50,11 +50,12 @@ struct Layout {
 Layout computeLayout(ImVec2 display, const PanelLayout& user) {
   auto chosen = [](float value, float fallback) { return value > 0.0f ? value : fallback; };
   float left_w = std::round(chosen(user.left_width, std::clamp(display.x * 0.2f, 260.0f, 340.0f)));
-  float right_w = std::round(chosen(user.right_width, std::clamp(display.x * 0.3f, 320.0f, 500.0f)));
+  float right_w =
+      std::round(chosen(user.right_width, std::clamp(display.x * 0.3f, 320.0f, 500.0f)));
   left_w = std::clamp(left_w, 160.0f, std::max(160.0f, display.x * 0.4f));
   right_w = std::clamp(right_w, 200.0f, std::max(200.0f, display.x - left_w - 200.0f));
-  const float timeline_h =
-      std::round(std::clamp(chosen(user.timeline_height, 128.0f), 80.0f, std::max(80.0f, display.y * 0.5f)));
+  const float timeline_h = std::round(
+      std::clamp(chosen(user.timeline_height, 128.0f), 80.0f, std::max(80.0f, display.y * 0.5f)));
   const float files_h =
       std::round(display.y * std::clamp(chosen(user.files_fraction, 0.42f), 0.15f, 0.85f));
   const float centre_w = std::max(display.x - left_w - right_w, 1.0f);
@@ -115,42 +116,58 @@ void handleViewportMouse(OrbitCamera& camera, ViewportDrag& drag, const Rect& vi
   if (hovered && io.MouseWheel != 0.0f) camera.zoom(io.MouseWheel);
 }
 
+// What GLFW delivers between two frames, queued by its callbacks and handled by the main loop at
+// one defined point. Keys are queued rather than read from ImGui's per-frame key state: at the
+// frame rates of a software renderer under load (10-20 fps) a quick tap starts and ends within
+// one frame, and ImGui 1.86 would never see it pressed.
+struct WindowEvents {
+  struct Key {
+    int key = 0, mods = 0;
+    bool repeat = false;
+  };
+  std::vector<std::string> dropped;
+  std::vector<Key> keys;
+};
+
 // Space play/pause, Left/Right step a frame, Home rewinds, F frames the character; Ctrl+Z undo,
 // Ctrl+Shift+Z or Ctrl+Y redo, Ctrl+S save, Ctrl+N new; E starts, pauses or resumes the search,
 // Shift+E stops it. Not while a text field has the keyboard (it has its own undo).
-void handleKeys(EditorState& state, FilesPanelState& files_panel) {
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantCaptureKeyboard) return;
-  if (io.KeyCtrl) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_Z, false)) io.KeyShift ? redo(state) : undo(state);
-    if (ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo(state);
-    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) saveOpenProject(state, files_panel);
-    if (ImGui::IsKeyPressed(GLFW_KEY_N, false)) newProject(state);
-    return;
-  }
-  if (ImGui::IsKeyPressed(GLFW_KEY_E, false)) {
-    const std::string run = state.evolution.snapshot ? state.evolution.snapshot->state : "";
-    if (io.KeyShift) {
-      stopEvolution(state);
-    } else if (run == "running") {
-      pauseEvolution(state);
-    } else if (run == "paused") {
-      resumeEvolution(state);
-    } else {
-      startEvolution(state);
+void handleKeys(EditorState& state, FilesPanelState& files_panel,
+                const std::vector<WindowEvents::Key>& keys) {
+  if (ImGui::GetIO().WantCaptureKeyboard) return;
+  for (const WindowEvents::Key& press : keys) {
+    const bool ctrl = (press.mods & GLFW_MOD_CONTROL) != 0;
+    const bool shift = (press.mods & GLFW_MOD_SHIFT) != 0;
+    const motion::Clip* clip = state.clip();
+    Playback& playback = state.playback;
+    if (ctrl) {
+      if (press.key == GLFW_KEY_Z) shift ? redo(state) : undo(state);
+      if (press.key == GLFW_KEY_Y) redo(state);
+      if (press.key == GLFW_KEY_S && !press.repeat) saveOpenProject(state, files_panel);
+      if (press.key == GLFW_KEY_N && !press.repeat) newProject(state);
+    } else if (press.key == GLFW_KEY_E && !press.repeat) {
+      const std::string run = state.evolution.snapshot ? state.evolution.snapshot->state : "";
+      if (shift) {
+        stopEvolution(state);
+      } else if (run == "running") {
+        pauseEvolution(state);
+      } else if (run == "paused") {
+        resumeEvolution(state);
+      } else {
+        startEvolution(state);
+      }
+    } else if (press.key == GLFW_KEY_F && !press.repeat) {
+      state.frame_requested = true;
+    } else if (clip != nullptr && press.key == GLFW_KEY_SPACE && !press.repeat) {
+      playback.playing = !playback.playing;
+    } else if (clip != nullptr && press.key == GLFW_KEY_HOME) {
+      playback.time_s = 0.0;
+    } else if (clip != nullptr && (press.key == GLFW_KEY_LEFT || press.key == GLFW_KEY_RIGHT)) {
+      playback.playing = false;
+      const int frame = static_cast<int>(std::lround(playback.time_s / clip->frame_time)) +
+                        (press.key == GLFW_KEY_RIGHT ? 1 : -1);
+      playback.time_s = std::clamp(frame, 0, clip->frame_count - 1) * clip->frame_time;
     }
-  }
-  const motion::Clip* clip = state.clip();
-  if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) state.frame_requested = true;
-  if (clip == nullptr) return;
-  Playback& playback = state.playback;
-  if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) playback.playing = !playback.playing;
-  if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) playback.time_s = 0.0;
-  const int step = ImGui::IsKeyPressed(GLFW_KEY_RIGHT) ? 1 : ImGui::IsKeyPressed(GLFW_KEY_LEFT) ? -1 : 0;
-  if (step != 0) {
-    playback.playing = false;
-    const int frame = static_cast<int>(std::lround(playback.time_s / clip->frame_time)) + step;
-    playback.time_s = std::clamp(frame, 0, clip->frame_count - 1) * clip->frame_time;
   }
 }
 
@@ -226,7 +243,8 @@ void drawOverlay(const EditorState& state, const Rect& viewport, const FrameTime
     draw->AddText(ImVec2(at.x, at.y + 64.0f), IM_COL32(255, 115, 100, 255),
                   "The 3D view is off: its shaders did not load (see Log).");
   }
-  draw->AddText(ImVec2(at.x, viewport.pos.y + viewport.size.y - 24.0f), IM_COL32(120, 125, 135, 255),
+  draw->AddText(ImVec2(at.x, viewport.pos.y + viewport.size.y - 24.0f),
+                IM_COL32(120, 125, 135, 255),
                 "LMB orbit   MMB / Shift+LMB pan   wheel zoom   F frame   Space play   "
                 "E evolve   Ctrl+Z undo   Ctrl+S save");
 }
@@ -238,12 +256,14 @@ bool drawQuitPrompt(EditorState& state, FilesPanelState& files_panel, bool& aske
     asked = false;
   }
   bool quit = false;
-  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Always,
+                          ImVec2(0.5f, 0.5f));
   if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    const std::string name =
-        state.project_path.empty() ? "the untitled project" : state.project_path.filename().string();
+    const std::string name = state.project_path.empty() ? "the untitled project"
+                                                        : state.project_path.filename().string();
     ImGui::Text("Save the changes to %s before closing?", name.c_str());
-    if (state.project_path.empty()) ImGui::TextDisabled("It will be saved as %s", files_panel.save_path.c_str());
+    if (state.project_path.empty())
+      ImGui::TextDisabled("It will be saved as %s", files_panel.save_path.c_str());
     if (ImGui::Button("Save and close")) {
       saveOpenProject(state, files_panel);
       quit = !hasUnsavedChanges(state);  // a failed save keeps the editor open (see Log)
@@ -267,8 +287,15 @@ void onGlfwError(int code, const char* description) {
 
 // Files dropped on the window, queued here and opened by the main loop at a defined point.
 void onDrop(GLFWwindow* window, int count, const char** paths) {
-  auto* pending = static_cast<std::vector<std::string>*>(glfwGetWindowUserPointer(window));
-  for (int i = 0; i < count; ++i) pending->emplace_back(paths[i]);
+  auto* events = static_cast<WindowEvents*>(glfwGetWindowUserPointer(window));
+  for (int i = 0; i < count; ++i) events->dropped.emplace_back(paths[i]);
+}
+
+// Installed before ImGui's backend, which calls it after its own handling.
+void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+  if (action == GLFW_RELEASE) return;
+  auto* events = static_cast<WindowEvents*>(glfwGetWindowUserPointer(window));
+  events->keys.push_back({key, mods, action == GLFW_REPEAT});
 }
 
 }  // namespace
@@ -310,9 +337,10 @@ int runEditor(const EditorOptions& options) {
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(headless ? 0 : 1);
-  std::vector<std::string> dropped;
-  glfwSetWindowUserPointer(window, &dropped);
+  WindowEvents events;
+  glfwSetWindowUserPointer(window, &events);
   glfwSetDropCallback(window, onDrop);
+  glfwSetKeyCallback(window, onKey);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -346,8 +374,8 @@ int runEditor(const EditorOptions& options) {
       std::filesystem::rename(recovery, kept, ec);
       if (!ec) {
         rememberRecent(state, kept.string());
-        state.log.warning("the last session ended with unsaved changes; they are in " + kept.string() +
-                          " (first in Recent)");
+        state.log.warning("the last session ended with unsaved changes; they are in " +
+                          kept.string() + " (first in Recent)");
       }
     }
     if (!options.file.empty()) {
@@ -359,7 +387,8 @@ int runEditor(const EditorOptions& options) {
       state.evolution.settings.minutes = options.evolve_minutes;
       startEvolution(state);
     }
-    if (state.analysis) spectrum_panel.global_k = state.analysis->joint_k.empty() ? 5 : state.analysis->joint_k[0];
+    if (state.analysis)
+      spectrum_panel.global_k = state.analysis->joint_k.empty() ? 5 : state.analysis->joint_k[0];
 
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
@@ -378,18 +407,19 @@ int runEditor(const EditorOptions& options) {
       }
       glfwPollEvents();
       const Clock::time_point now = Clock::now();
-      const double dt = headless ? kScreenshotDt : std::chrono::duration<double>(now - last).count();
+      const double dt =
+          headless ? kScreenshotDt : std::chrono::duration<double>(now - last).count();
       if (frame > 0) frame_times.add(std::chrono::duration<double>(now - last).count());
       last = now;
       state.log.clock_s = std::chrono::duration<double>(now - start).count();
 
-      for (const std::string& path : dropped) {
+      for (const std::string& path : events.dropped) {
         if (openAny(state, path)) {
           files_panel.path = path;
           files_panel.save_path.clear();
         }
       }
-      dropped.clear();
+      events.dropped.clear();
       advancePlayback(state, std::min(dt, 0.25));
       const bool unsaved = hasUnsavedChanges(state);
       std::string title = "Sinew";
@@ -414,7 +444,8 @@ int runEditor(const EditorOptions& options) {
       pollEvolution(state);
       place(layout.evolve);
       drawEvolvePanel(state);
-      handleKeys(state, files_panel);
+      handleKeys(state, files_panel, events.keys);
+      events.keys.clear();
       if (drawQuitPrompt(state, files_panel, ask_to_quit)) {
         quit_confirmed = true;
         glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -456,12 +487,12 @@ int runEditor(const EditorOptions& options) {
           std::cerr << "sinew edit: " << status.message() << '\n';
           exit_code = 1;
         } else {
-          std::printf("sinew edit: wrote %s (%dx%d) after %d frames; frame time median %.1f ms "
-                      "(%.0f fps), 95th percentile %.1f ms\n",
-                      options.screenshot.c_str(), fb_w, fb_h, frame,
-                      frame_times.percentile(0.5) * 1000.0,
-                      frame_times.percentile(0.5) > 0 ? 1.0 / frame_times.percentile(0.5) : 0.0,
-                      frame_times.percentile(0.95) * 1000.0);
+          std::printf(
+              "sinew edit: wrote %s (%dx%d) after %d frames; frame time median %.1f ms "
+              "(%.0f fps), 95th percentile %.1f ms\n",
+              options.screenshot.c_str(), fb_w, fb_h, frame, frame_times.percentile(0.5) * 1000.0,
+              frame_times.percentile(0.5) > 0 ? 1.0 / frame_times.percentile(0.5) : 0.0,
+              frame_times.percentile(0.95) * 1000.0);
         }
         glfwSetWindowShouldClose(window, GLFW_TRUE);
       }

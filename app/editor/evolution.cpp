@@ -11,8 +11,9 @@ namespace {
 
 std::string termsLine(const search::FitnessTerms& t) {
   char line[200];
-  std::snprintf(line, sizeof line, "cost %.2f (fall %.1f, tracking %.2f, speed %.2f), up %.1f s, %.1f m",
-                t.total, t.fall, t.tracking, t.speed, t.survived_s, t.distance_m);
+  std::snprintf(line, sizeof line,
+                "cost %.2f (fall %.1f, tracking %.2f, speed %.2f), up %.1f s, %.1f m", t.total,
+                t.fall, t.tracking, t.speed, t.survived_s, t.distance_m);
   return line;
 }
 
@@ -46,9 +47,9 @@ bool startEvolution(EditorState& state) {
   }
   search::GenomeSettings genome;
   genome.no_prior = evolution.settings.no_prior;
-  Result<search::Problem> problem = search::Problem::create(
-      plan.value(), skeleton, state.analysis->target, genome, simulation.value(),
-      evolution.settings.weights);
+  Result<search::Problem> problem =
+      search::Problem::create(plan.value(), skeleton, state.analysis->target, genome,
+                              simulation.value(), evolution.settings.weights);
   if (!problem.ok()) {
     state.log.error("evolve: " + problem.message());
     return false;
@@ -71,30 +72,47 @@ bool startEvolution(EditorState& state) {
   evolution.snapshot = evolution.session->snapshot();
   evolution.session->start();
   char line[200];
-  std::snprintf(line, sizeof line,
-                "evolve: %d coordinates, %s, population %d, %.1f min, %.0f s window on %s, %s on %d threads",
-                evolution.session->problem().layout.size(),
-                chosen.optimizer == "ga" ? "genetic algorithm" : "CMA-ES",
-                evolution.session->population(), settings.minutes, chosen.window_s,
-                chosen.terrain.c_str(),
-                genome.no_prior ? "no prior" : "seeded from the model", search::hardwareThreads());
+  std::snprintf(
+      line, sizeof line,
+      "evolve: %d coordinates, %s, population %d, %.1f min, %.0f s window on %s, %s on %d threads",
+      evolution.session->problem().layout.size(),
+      chosen.optimizer == "ga" ? "genetic algorithm" : "CMA-ES", evolution.session->population(),
+      settings.minutes, chosen.window_s, chosen.terrain.c_str(),
+      genome.no_prior ? "no prior" : "seeded from the model", search::hardwareThreads());
   state.log.info(line);
   return true;
 }
 
+namespace {
+
+std::string currentState(const EditorState& state) {
+  return state.evolution.session ? state.evolution.session->snapshot()->state : "";
+}
+
+}  // namespace
+
 void pauseEvolution(EditorState& state) {
-  if (state.evolution.session) state.evolution.session->pause();
+  if (currentState(state) != "running") return;
+  state.evolution.session->pause();
+  state.log.info("evolve: paused");
 }
 
 void resumeEvolution(EditorState& state) {
-  if (state.evolution.session) state.evolution.session->resume();
+  if (currentState(state) != "paused") return;
+  state.evolution.session->resume();
+  state.log.info("evolve: resumed");
 }
 
 void stopEvolution(EditorState& state) {
   EvolutionState& evolution = state.evolution;
   if (!evolution.session) return;
+  const std::string was = currentState(state);
   evolution.session->stop();
   evolution.snapshot = evolution.session->snapshot();
+  if (was == "running" || was == "paused") {
+    state.log.info("evolve: stopped after generation " +
+                   std::to_string(evolution.snapshot->generation));
+  }
 }
 
 void setEvolutionWeights(EditorState& state) {
@@ -112,7 +130,8 @@ void pollEvolution(EditorState& state) {
   const search::Snapshot& snap = *evolution.snapshot;
   for (; evolution.reported_generation < static_cast<int>(snap.history.size());
        ++evolution.reported_generation) {
-    const search::GenerationRecord& r = snap.history[static_cast<size_t>(evolution.reported_generation)];
+    const search::GenerationRecord& r =
+        snap.history[static_cast<size_t>(evolution.reported_generation)];
     char line[96];
     std::snprintf(line, sizeof line, "generation %d (%lld evaluations, %.0f s): best ",
                   r.generation, r.evaluations, r.wall_s);
@@ -132,10 +151,9 @@ bool exportEvolutionBest(EditorState& state) {
   meta.no_prior = evolution.settings.no_prior;
   meta.rig = state.file_path.string();
   meta.clip = state.file_path.string();
-  const Status saved = search::exportBest(evolution.session->problem(),
-                                          evolution.snapshot->best_point,
-                                          evolution.snapshot->best_terms, *state.asset,
-                                          evolution.export_dir, meta);
+  const Status saved =
+      search::exportBest(evolution.session->problem(), evolution.snapshot->best_point,
+                         evolution.snapshot->best_terms, *state.asset, evolution.export_dir, meta);
   if (!saved.ok()) {
     state.log.error("export: " + saved.message());
     return false;
