@@ -1,4 +1,5 @@
-// `sinew edit [PROJECT | FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot OUT.png
+// `sinew edit [PROJECT | FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot
+// OUT.png
 // --frames N [--evolve-generations G]]`: the editor.
 #include <memory>
 
@@ -9,8 +10,8 @@ namespace sinew::app {
 
 void addEditCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<editor::EditorOptions>();
-  CLI::App* command = app.add_subcommand(
-      "edit", "Open the editor (the default when sinew runs without a command)");
+  CLI::App* command =
+      app.add_subcommand("edit", "Open the editor (the default when sinew runs without a command)");
   command->add_option("file", options->file,
                       "A project (.json), or a BVH or glTF file to open (default: the bundled "
                       "default project, the biped walk)");
@@ -23,12 +24,26 @@ void addEditCommand(CLI::App& app, int& exit_code) {
   command->add_flag("--evolve", options->evolve,
                     "Start evolving the opened clip's physical motion at once (the Evolve panel's "
                     "Start)");
-  command->add_option("--evolve-minutes", options->evolve_minutes, "The search's budget (default 2)")
+  command
+      ->add_option("--evolve-minutes", options->evolve_minutes, "The search's budget (default 2)")
       ->check(CLI::Range(0.1, 600.0));
-  command->add_option("--evolve-generations", options->evolve_generations,
-                      "With --screenshot and --evolve: wait for this many generations first "
-                      "(at most 2 minutes)")
+  command
+      ->add_option("--evolve-generations", options->evolve_generations,
+                   "With --screenshot and --evolve: wait for this many generations first "
+                   "(at most 2 minutes)")
       ->check(CLI::Range(0, 10000));
+  command
+      ->add_option("--shown", options->shown,
+                   "Individuals of the population drawn in the viewport, best first (default 8)")
+      ->check(CLI::Range(1, 64));
+  command->add_option(
+      "--panel-shots", options->panel_dir,
+      "With --screenshot: also save each panel as DIR/<panel>.png (the user guide's "
+      "pictures)");
+  command->add_flag(
+      "--bench", options->bench,
+      "Print the editor's frame time (median, 95th percentile): --frames frames of the "
+      "clip alone, then as many while the search runs with --shown characters");
   command->callback([options, &exit_code] {
     if (options->file.empty()) options->file = SINEW_ASSET_DIR "/default.sinew.json";
     options->shader_dir = SINEW_SHADER_DIR;

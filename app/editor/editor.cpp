@@ -202,6 +202,10 @@ class FrameTimes {
       next_ = (next_ + 1) % times_.size();
     }
   }
+  void clear() {
+    times_.clear();
+    next_ = 0;
+  }
   double percentile(double p) const {
     if (times_.empty()) return 0.0;
     std::vector<double> sorted = times_;
@@ -315,7 +319,7 @@ int runEditor(const EditorOptions& options) {
   glfwWindowHint(GLFW_SAMPLES, 0);
   // What the editor remembers between runs (not in headless runs: screenshots and tests see the
   // defaults and leave the user's files alone).
-  const bool headless = !options.screenshot.empty();
+  const bool headless = !options.screenshot.empty() || options.bench;
   const std::filesystem::path config = headless ? std::filesystem::path() : configDir();
   Preferences preferences;
   std::string preferences_error;
@@ -383,6 +387,8 @@ int runEditor(const EditorOptions& options) {
       files_panel.animation = options.animation;
       if (!openAny(state, options.file, options.animation)) startUntitled(state);
     }
+    state.evolution.settings.shown = options.shown;
+    if (options.bench) state.evolution.settings.minutes = options.evolve_minutes;
     if (options.evolve) {
       state.evolution.settings.minutes = options.evolve_minutes;
       startEvolution(state);
@@ -397,6 +403,11 @@ int runEditor(const EditorOptions& options) {
     app::Project autosaved = state.saved;
     bool ask_to_quit = false;
     bool quit_confirmed = false;
+    enum class BenchPhase { kIdle, kWaiting, kSearching };
+    struct {
+      BenchPhase phase = BenchPhase::kIdle;
+      double idle_median = 0.0, idle_p95 = 0.0;
+    } bench;
     int frame = 0;
     while (true) {
       if (glfwWindowShouldClose(window)) {
@@ -476,23 +487,95 @@ int runEditor(const EditorOptions& options) {
       renderer.draw(rect, camera, scene, state.view.show_grid);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-      // A screenshot of a search waits for its generations (at most two minutes of wall time).
-      const bool waiting = headless && options.evolve && state.evolution.snapshot &&
-                           state.evolution.snapshot->generation < options.evolve_generations &&
-                           state.evolution.snapshot->state == "running" &&
-                           std::chrono::duration<double>(now - start).count() < 120.0;
-      if (!waiting) ++frame;
-      if (headless && frame >= options.frames) {
-        if (Status status = saveFramebufferPng(options.screenshot, fb_w, fb_h); !status.ok()) {
-          std::cerr << "sinew edit: " << status.message() << '\n';
-          exit_code = 1;
-        } else {
+      const double elapsed_s = std::chrono::duration<double>(now - start).count();
+      const bool searching =
+          state.evolution.snapshot && state.evolution.snapshot->state == "running";
+      const int generation = state.evolution.snapshot ? state.evolution.snapshot->generation : 0;
+      if (options.bench) {
+        // The frame-time benchmark: the clip alone, then the population replaying while the
+        // search runs on the other threads; the same window, the same process.
+        if (bench.phase == BenchPhase::kWaiting && (generation >= 1 || elapsed_s > 300.0)) {
+          if (generation < 1) {
+            std::cerr << "sinew edit: --bench: the search finished no generation in 300 s\n";
+            exit_code = 1;
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
+          }
+          bench.phase = BenchPhase::kSearching;
+          frame_times.clear();
+          frame = 0;
+        }
+        if (bench.phase != BenchPhase::kWaiting) ++frame;
+        if (bench.phase == BenchPhase::kIdle && frame >= options.frames) {
+          bench.idle_median = frame_times.percentile(0.5);
+          bench.idle_p95 = frame_times.percentile(0.95);
+          if (!startEvolution(state)) {
+            exit_code = 1;
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
+          }
+          bench.phase = BenchPhase::kWaiting;
+        }
+      } else {
+        // A screenshot of a search waits for its generations (at most two minutes of wall time).
+        const bool waiting = headless && options.evolve && searching &&
+                             generation < options.evolve_generations && elapsed_s < 120.0;
+        if (!waiting) ++frame;
+      }
+      const bool done = options.bench
+                            ? bench.phase == BenchPhase::kSearching && frame >= options.frames
+                            : headless && frame >= options.frames;
+      if (done) {
+        if (options.bench) {
+          const double median = frame_times.percentile(0.5), p95 = frame_times.percentile(0.95);
           std::printf(
-              "sinew edit: wrote %s (%dx%d) after %d frames; frame time median %.1f ms "
-              "(%.0f fps), 95th percentile %.1f ms\n",
-              options.screenshot.c_str(), fb_w, fb_h, frame, frame_times.percentile(0.5) * 1000.0,
-              frame_times.percentile(0.5) > 0 ? 1.0 / frame_times.percentile(0.5) : 0.0,
-              frame_times.percentile(0.95) * 1000.0);
+              "editor frame time, %dx%d, %d frames each, %s:\n"
+              "  the clip alone:                        median %6.1f ms (%4.0f fps), 95th "
+              "percentile %6.1f ms\n"
+              "  %2d characters while the search runs:   median %6.1f ms (%4.0f fps), 95th "
+              "percentile %6.1f ms  (generation %d, %s)\n"
+              "  ratio (search / alone): median %.2fx, 95th percentile %.2fx\n",
+              fb_w, fb_h, options.frames, reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+              bench.idle_median * 1000.0, bench.idle_median > 0 ? 1.0 / bench.idle_median : 0.0,
+              bench.idle_p95 * 1000.0, state.evolution.settings.shown, median * 1000.0,
+              median > 0 ? 1.0 / median : 0.0, p95 * 1000.0, generation,
+              searching ? "still running" : "finished",
+              bench.idle_median > 0 ? median / bench.idle_median : 0.0,
+              bench.idle_p95 > 0 ? p95 / bench.idle_p95 : 0.0);
+        }
+        if (!options.screenshot.empty()) {
+          if (Status status = saveFramebufferPng(options.screenshot, fb_w, fb_h); !status.ok()) {
+            std::cerr << "sinew edit: " << status.message() << '\n';
+            exit_code = 1;
+          } else {
+            std::printf(
+                "sinew edit: wrote %s (%dx%d) after %d frames; frame time median %.1f ms "
+                "(%.0f fps), 95th percentile %.1f ms\n",
+                options.screenshot.c_str(), fb_w, fb_h, frame, frame_times.percentile(0.5) * 1000.0,
+                frame_times.percentile(0.5) > 0 ? 1.0 / frame_times.percentile(0.5) : 0.0,
+                frame_times.percentile(0.95) * 1000.0);
+          }
+        }
+        if (!options.panel_dir.empty()) {
+          // One PNG per panel, for the user guide.
+          std::error_code ec;
+          std::filesystem::create_directories(options.panel_dir, ec);
+          const std::pair<const char*, const Rect*> panels[] = {
+              {"files", &layout.files},       {"log", &layout.log},
+              {"timeline", &layout.timeline}, {"spectrum", &layout.spectrum},
+              {"evolve", &layout.evolve},     {"viewport", &layout.viewport}};
+          for (const auto& [name, r] : panels) {
+            const std::string path =
+                (std::filesystem::path(options.panel_dir) / (std::string(name) + ".png")).string();
+            const Status status = saveFramebufferRegionPng(
+                path, fb_w, fb_h, static_cast<int>(std::lround(r->pos.x * sx)),
+                static_cast<int>(std::lround(r->pos.y * sy)),
+                static_cast<int>(std::lround(r->size.x * sx)),
+                static_cast<int>(std::lround(r->size.y * sy)));
+            if (!status.ok()) {
+              std::cerr << "sinew edit: " << status.message() << '\n';
+              exit_code = 1;
+            }
+          }
+          std::printf("sinew edit: wrote the panels to %s\n", options.panel_dir.c_str());
         }
         glfwSetWindowShouldClose(window, GLFW_TRUE);
       }

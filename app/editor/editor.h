@@ -15,6 +15,10 @@ struct EditorOptions {
   double evolve_minutes = 2.0;   // its budget
   int evolve_generations = 0;    // with a screenshot: frames count only once the search has
                                  // finished this many generations (waiting at most 2 minutes)
+  int shown = 8;                 // individuals of the population drawn, best first
+  std::string panel_dir;         // with a screenshot: also each panel as DIR/<panel>.png
+  bool bench = false;            // print frame times: `frames` frames of the clip alone, then
+                                 // `frames` frames with the population while the search runs
 };
 
 // Runs until the window closes (or the screenshot is written). Returns the process exit code:

@@ -8,5 +8,9 @@
 namespace sinew::editor {
 
 Status saveFramebufferPng(const std::string& path, int width, int height);
+// A part of the framebuffer: (x, y) is its top-left corner counted from the window's top-left,
+// in framebuffer pixels; clipped to the framebuffer.
+Status saveFramebufferRegionPng(const std::string& path, int fb_width, int fb_height, int x, int y,
+                                int width, int height);
 
 }  // namespace sinew::editor

@@ -4,7 +4,8 @@
 # checks that the editor still runs, exits 0 and names the file and line in its log; `evolve`
 # starts the search from the editor, waits for two generations and checks the log reports them
 # and the population is drawn (a green best run in the viewport).
-# Usage: editor_screenshot_test.sh SINEW_BINARY WORK_DIR (screenshot|broken)
+# and `bench` prints the editor's frame time with 16 characters while the search runs.
+# Usage: editor_screenshot_test.sh SINEW_BINARY WORK_DIR (screenshot|broken|evolve|bench)
 # Exit 77 (skipped) when xvfb-run is missing.
 set -euo pipefail
 sinew="$1"
@@ -127,6 +128,21 @@ print(f"evolve screenshot: {green} green samples (the best run)")
 if green < 200:
     sys.exit("FAIL: the population's best run is not drawn")
 PY
+    ;;
+  bench)
+    # The frame-time benchmark: 16 characters of the population replaying while the search runs,
+    # against the clip alone in the same process; prints its figures. The panels are saved too
+    # (the user guide's pictures): each must exist.
+    out="$work/bench.txt"
+    "${xvfb[@]}" "$sinew" edit --bench --shown 16 --frames 40 --evolve-minutes 1 \
+      --screenshot "$work/bench.png" --panel-shots "$work/panels" | tee "$out"
+    grep -q "the clip alone: *median" "$out" || { echo "FAIL: no idle frame time"; exit 1; }
+    grep -q "16 characters while the search runs: *median" "$out" || { echo "FAIL: no search frame time"; exit 1; }
+    grep -q "ratio (search / alone)" "$out" || { echo "FAIL: no ratio"; exit 1; }
+    for panel in files log timeline spectrum evolve viewport; do
+      test -s "$work/panels/$panel.png" || { echo "FAIL: no $panel.png"; exit 1; }
+    done
+    echo "PASS: frame times printed, 6 panels saved"
     ;;
   *)
     echo "unknown mode $mode"; exit 2 ;;
