@@ -61,6 +61,7 @@ bool startEvolution(EditorState& state) {
   settings.optimizer = chosen.optimizer;
   settings.seed = chosen.seed;
   settings.record_population = true;  // the viewport replays the population
+  settings.nice = 10;  // the UI thread draws first; the search takes what the frames leave
   Result<std::unique_ptr<search::Session>> session =
       search::Session::create(std::move(problem).value(), settings);
   if (!session.ok()) {

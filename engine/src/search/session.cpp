@@ -7,6 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
 
@@ -22,15 +27,26 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-nlohmann::json statsJson(const TermStats& s) { return {s.best, s.mean, s.worst}; }
+nlohmann::json statsJson(const TermStats& s) {
+  return {s.best, s.mean, s.worst};
+}
 TermStats statsFromJson(const nlohmann::json& j) {
   return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
 }
 
 nlohmann::json weightsJson(const FitnessWeights& w) {
-  return {{"fall", w.fall},           {"tracking", w.tracking}, {"speed", w.speed},
-          {"heading", w.heading},     {"placement", w.placement}, {"upright", w.upright},
+  return {{"fall", w.fall},       {"tracking", w.tracking},   {"speed", w.speed},
+          {"heading", w.heading}, {"placement", w.placement}, {"upright", w.upright},
           {"energy", w.energy}};
+}
+
+// Linux keeps a niceness per thread, inherited by the threads it creates.
+void lowerThisThreadsPriority(int nice) {
+#ifdef __linux__
+  if (nice > 0) setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), nice);
+#else
+  (void)nice;
+#endif
 }
 
 }  // namespace
@@ -48,6 +64,7 @@ Status EvolveSettings::validate() const {
   if (generations == 0 && minutes == 0.0)
     return Status::error("generations and minutes are both 0: give the search a budget");
   if (threads < 0) return Status::error("threads must be >= 0");
+  if (nice < 0 || nice > 19) return Status::error("nice must be 0..19");
   if (!(std::isfinite(initial_sigma) && initial_sigma > 0.0 && initial_sigma <= 1.0))
     return Status::error("initial_sigma must be in (0, 1]");
   return Status();
@@ -61,7 +78,8 @@ Session::~Session() {
 }
 
 Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSettings& settings) {
-  if (Status s = settings.validate(); !s.ok()) return Status::error("search settings: " + s.message());
+  if (Status s = settings.validate(); !s.ok())
+    return Status::error("search settings: " + s.message());
   std::unique_ptr<Session> session(new Session(std::move(problem), settings));
   const int n = session->problem_.layout.size();
   const std::vector<double> start = session->problem_.layout.startPoint(settings.seed);
@@ -90,7 +108,8 @@ Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSe
   return session;
 }
 
-Result<std::unique_ptr<Session>> Session::resume(Problem problem, const nlohmann::json& checkpoint) {
+Result<std::unique_ptr<Session>> Session::resume(Problem problem,
+                                                 const nlohmann::json& checkpoint) {
   try {
     if (checkpoint.at("format").get<std::string>() != kSessionFormat)
       return Status::error("checkpoint: format is not " + std::string(kSessionFormat));
@@ -107,7 +126,8 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem, const nlohmann
     settings.seed = s.at("seed").get<std::uint64_t>();
     settings.initial_sigma = s.at("initial_sigma").get<double>();
     settings.record_population = s.at("record_population").get<bool>();
-    if (Status st = settings.validate(); !st.ok()) return Status::error("checkpoint: settings: " + st.message());
+    if (Status st = settings.validate(); !st.ok())
+      return Status::error("checkpoint: settings: " + st.message());
     if (checkpoint.at("genome_size").get<int>() != problem.layout.size())
       return Status::error("checkpoint: its genome has " + checkpoint.at("genome_size").dump() +
                            " coordinates, this rig and clip give " +
@@ -127,7 +147,8 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem, const nlohmann
       r.evaluations = h.at("evaluations").get<long long>();
       r.wall_s = h.at("wall_s").get<double>();
       r.total = statsFromJson(h.at("total"));
-      for (int k = 0; k < kFitnessTermCount; ++k) r.terms[static_cast<size_t>(k)] = statsFromJson(h.at(fitnessTermName(k)));
+      for (int k = 0; k < kFitnessTermCount; ++k)
+        r.terms[static_cast<size_t>(k)] = statsFromJson(h.at(fitnessTermName(k)));
       r.best_survived_s = h.at("best_survived_s").get<double>();
       r.best_distance_m = h.at("best_distance_m").get<double>();
       session->history_.push_back(r);
@@ -150,11 +171,14 @@ nlohmann::json Session::checkpoint() const {
   std::lock_guard<std::mutex> lock(mutex_);
   nlohmann::json history = nlohmann::json::array();
   for (const GenerationRecord& r : history_) {
-    nlohmann::json h = {{"generation", r.generation},   {"evaluations", r.evaluations},
-                        {"wall_s", r.wall_s},           {"total", statsJson(r.total)},
+    nlohmann::json h = {{"generation", r.generation},
+                        {"evaluations", r.evaluations},
+                        {"wall_s", r.wall_s},
+                        {"total", statsJson(r.total)},
                         {"best_survived_s", r.best_survived_s},
                         {"best_distance_m", r.best_distance_m}};
-    for (int k = 0; k < kFitnessTermCount; ++k) h[fitnessTermName(k)] = statsJson(r.terms[static_cast<size_t>(k)]);
+    for (int k = 0; k < kFitnessTermCount; ++k)
+      h[fitnessTermName(k)] = statsJson(r.terms[static_cast<size_t>(k)]);
     history.push_back(h);
   }
   return {{"format", kSessionFormat},
@@ -211,7 +235,8 @@ bool Session::runGeneration() {
   std::vector<double> costs(results.size());
   for (size_t i = 0; i < results.size(); ++i) costs[i] = results[i].terms.total;
   GenerationRecord record;
-  record.total = {std::numeric_limits<double>::infinity(), 0.0, -std::numeric_limits<double>::infinity()};
+  record.total = {std::numeric_limits<double>::infinity(), 0.0,
+                  -std::numeric_limits<double>::infinity()};
   for (TermStats& t : record.terms) t = record.total;
   size_t best = 0, finite = 0;
   for (size_t i = 0; i < results.size(); ++i) {
@@ -225,7 +250,8 @@ bool Session::runGeneration() {
       s.mean += v;
     };
     add(record.total, t.total);
-    for (int k = 0; k < kFitnessTermCount; ++k) add(record.terms[static_cast<size_t>(k)], fitnessTerm(t, k));
+    for (int k = 0; k < kFitnessTermCount; ++k)
+      add(record.terms[static_cast<size_t>(k)], fitnessTerm(t, k));
   }
   if (finite > 0) {
     record.total.mean /= static_cast<double>(finite);
@@ -258,7 +284,8 @@ bool Session::runGeneration() {
     snap->population = points;
     for (Evaluation& e : results) {
       snap->population_terms.push_back(e.terms);
-      if (settings_.record_population) snap->population_motions.push_back(std::move(e.report.motion));
+      if (settings_.record_population)
+        snap->population_motions.push_back(std::move(e.report.motion));
     }
     snap->state = running_ ? "running" : "ready";
     snapshot_ = std::move(snap);
@@ -327,6 +354,7 @@ void Session::start() {
   paused_ = false;
   cancel_ = false;
   worker_ = std::thread([this] {
+    lowerThisThreadsPriority(settings_.nice);  // the evaluation threads it starts inherit it
     publish("running");
     workerLoop();
     bool stopped = false;

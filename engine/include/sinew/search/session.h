@@ -42,6 +42,8 @@ struct EvolveSettings {
   double initial_sigma = 0.02;      // CMA-ES step size (GA: mutation scale), normalised units,
                                     // (0, 1]: small, the prior walks already
   bool record_population = false;   // keep every individual's recorded motion in the snapshots
+  int nice = 0;  // 0..19: the search threads' niceness (Linux). The editor uses 10 so that its UI
+                 // thread gets the cores first while the search still takes whatever is left.
 
   Status validate() const;  // the message names the offending field
 };
