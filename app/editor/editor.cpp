@@ -42,14 +42,14 @@ struct Rect {
 // Fixed regions (ImGui 1.86 has no docking): Files over Log on the left, Spectrum on the right,
 // Timeline under the viewport, the viewport in the middle. Window coordinates.
 struct Layout {
-  Rect files, log, spectrum, evolve, timeline, viewport;
+  Rect files, body, log, spectrum, evolve, timeline, viewport;
 };
 
 // The panels' sizes: the user's (dragged, persisted in the preferences) where set, else defaults
 // for the window's size; always leaving the viewport at least 200 pixels.
 Layout computeLayout(ImVec2 display, const PanelLayout& user) {
   auto chosen = [](float value, float fallback) { return value > 0.0f ? value : fallback; };
-  float left_w = std::round(chosen(user.left_width, std::clamp(display.x * 0.2f, 260.0f, 340.0f)));
+  float left_w = std::round(chosen(user.left_width, std::clamp(display.x * 0.23f, 260.0f, 380.0f)));
   float right_w =
       std::round(chosen(user.right_width, std::clamp(display.x * 0.3f, 320.0f, 500.0f)));
   left_w = std::clamp(left_w, 160.0f, std::max(160.0f, display.x * 0.4f));
@@ -57,11 +57,15 @@ Layout computeLayout(ImVec2 display, const PanelLayout& user) {
   const float timeline_h = std::round(
       std::clamp(chosen(user.timeline_height, 128.0f), 80.0f, std::max(80.0f, display.y * 0.5f)));
   const float files_h =
-      std::round(display.y * std::clamp(chosen(user.files_fraction, 0.42f), 0.15f, 0.85f));
+      std::round(display.y * std::clamp(chosen(user.files_fraction, 0.34f), 0.1f, 0.7f));
+  const float body_h =
+      std::round(display.y * std::clamp(chosen(user.body_fraction, 0.36f), 0.1f, 0.7f));
   const float centre_w = std::max(display.x - left_w - right_w, 1.0f);
   Layout l;
   l.files = {ImVec2(0, 0), ImVec2(left_w, files_h)};
-  l.log = {ImVec2(0, files_h), ImVec2(left_w, display.y - files_h)};
+  l.body = {ImVec2(0, files_h), ImVec2(left_w, body_h)};
+  l.log = {ImVec2(0, files_h + body_h),
+           ImVec2(left_w, std::max(display.y - files_h - body_h, 40.0f))};
   const float spectrum_h =
       std::round(display.y * std::clamp(chosen(user.spectrum_fraction, 0.6f), 0.15f, 0.85f));
   l.spectrum = {ImVec2(display.x - right_w, 0), ImVec2(right_w, spectrum_h)};
@@ -83,11 +87,13 @@ void followResizes(const Layout& placed, ImVec2 display, PanelLayout& user) {
     return window != nullptr ? window->SizeFull : ImVec2(0, 0);
   };
   auto moved = [](float now, float was) { return now > 0.0f && std::abs(now - was) > 0.5f; };
-  const ImVec2 files = size("Files"), log = size("Log"), spectrum = size("Spectrum"),
-               evolve = size("Evolve"), timeline = size("Timeline");
+  const ImVec2 files = size("Files"), body = size("Body"), log = size("Log"),
+               spectrum = size("Spectrum"), evolve = size("Evolve"), timeline = size("Timeline");
   if (moved(files.x, placed.files.size.x)) user.left_width = files.x;
   if (moved(log.x, placed.log.size.x)) user.left_width = log.x;
   if (moved(files.y, placed.files.size.y)) user.files_fraction = files.y / display.y;
+  if (moved(body.x, placed.body.size.x)) user.left_width = body.x;
+  if (moved(body.y, placed.body.size.y)) user.body_fraction = body.y / display.y;
   if (moved(spectrum.x, placed.spectrum.size.x)) user.right_width = spectrum.x;
   if (moved(evolve.x, placed.evolve.size.x)) user.right_width = evolve.x;
   if (moved(spectrum.y, placed.spectrum.size.y)) user.spectrum_fraction = spectrum.y / display.y;
@@ -446,6 +452,8 @@ int runEditor(const EditorOptions& options) {
       const Layout layout = computeLayout(display, preferences.layout);
       place(layout.files);
       drawFilesPanel(state, files_panel);
+      place(layout.body);
+      drawBodyPanel(state);
       place(layout.log);
       drawLogPanel(state);
       place(layout.timeline);
@@ -559,9 +567,10 @@ int runEditor(const EditorOptions& options) {
           std::error_code ec;
           std::filesystem::create_directories(options.panel_dir, ec);
           const std::pair<const char*, const Rect*> panels[] = {
-              {"files", &layout.files},       {"log", &layout.log},
-              {"timeline", &layout.timeline}, {"spectrum", &layout.spectrum},
-              {"evolve", &layout.evolve},     {"viewport", &layout.viewport}};
+              {"files", &layout.files},       {"body", &layout.body},
+              {"log", &layout.log},           {"timeline", &layout.timeline},
+              {"spectrum", &layout.spectrum}, {"evolve", &layout.evolve},
+              {"viewport", &layout.viewport}};
           for (const auto& [name, r] : panels) {
             const std::string path =
                 (std::filesystem::path(options.panel_dir) / (std::string(name) + ".png")).string();

@@ -65,8 +65,7 @@ int mostActiveJoint(const spectral::MotionSpectrum& spectrum) {
 
 }  // namespace
 
-bool openFile(EditorState& state, const std::filesystem::path& path,
-              const std::string& animation) {
+bool openFile(EditorState& state, const std::filesystem::path& path, const std::string& animation) {
   Result<motion::MotionAsset> imported = motion::importMotion(path);
   if (!imported.ok()) {
     state.log.error(imported.message());
@@ -83,8 +82,8 @@ bool openFile(EditorState& state, const std::filesystem::path& path,
     if (clip_index < 0) {
       std::string names;
       for (const motion::Clip& clip : asset.clips) names += (names.empty() ? "" : ", ") + clip.name;
-      state.log.error(path.string() + ": no animation called '" + animation + "' (there are: " +
-                      names + ")");
+      state.log.error(path.string() + ": no animation called '" + animation +
+                      "' (there are: " + names + ")");
       return false;
     }
   }
@@ -129,9 +128,10 @@ void chooseClip(EditorState& state, int clip_index) {
   state.selected_joint = mostActiveJoint(analysis.spectrum);
   state.analysis = std::move(analysis);
   char line[160];
-  std::snprintf(line, sizeof line, "'%s': %d frames at %.0f fps, stride %.3f s, model error %.2f deg RMS",
-                clip->name.c_str(), clip->frame_count, clip->fps(), state.analysis->spectrum.period_s,
-                state.analysis->total.rot_err_deg_rms);
+  std::snprintf(line, sizeof line,
+                "'%s': %d frames at %.0f fps, stride %.3f s, model error %.2f deg RMS",
+                clip->name.c_str(), clip->frame_count, clip->fps(),
+                state.analysis->spectrum.period_s, state.analysis->total.rot_err_deg_rms);
   state.log.info(line);
 }
 
@@ -142,6 +142,69 @@ void setJointK(EditorState& state, std::vector<int> joint_k) {
   joint_k.resize(static_cast<size_t>(state.asset->skeleton.jointCount()), 0);
   state.analysis->joint_k = std::move(joint_k);
   rebuildModel(state.asset->skeleton, *clip, *state.analysis);
+}
+
+const physics::BodyPlan* bodyPlan(EditorState& state) {
+  EditorState::BodyPlanCache& cache = state.body_cache;
+  const motion::Clip* clip = state.clip();
+  const app::BodyOverrides& overrides = state.evolution.settings.body;
+  if (cache.file == state.file_path.string() && cache.clip_index == state.clip_index &&
+      cache.overrides == overrides && (cache.plan || !cache.error.empty())) {
+    return cache.plan ? &*cache.plan : nullptr;
+  }
+  cache.plan.reset();
+  cache.error.clear();
+  cache.file = state.file_path.string();
+  cache.clip_index = state.clip_index;
+  cache.overrides = overrides;
+  if (clip == nullptr) {
+    cache.error = "open a clip first";
+    return nullptr;
+  }
+  Result<physics::BodyPlanSettings> settings = app::parseBodyOverrides(overrides);
+  if (!settings.ok()) {
+    cache.error = settings.message();
+    return nullptr;
+  }
+  Result<physics::BodyPlan> plan =
+      physics::buildBodyPlan(state.asset->skeleton, clip, settings.value());
+  if (!plan.ok()) {
+    cache.error = plan.message();
+    return nullptr;
+  }
+  cache.plan = std::move(plan).value();
+  return &*cache.plan;
+}
+
+namespace {
+
+// Removes "NAME=..." (or "NAME" exactly) entries of `link` from a list of overrides.
+void eraseOverride(std::vector<std::string>& list, const std::string& link) {
+  list.erase(std::remove_if(list.begin(), list.end(),
+                            [&](const std::string& entry) {
+                              return entry == link || entry.rfind(link + "=", 0) == 0;
+                            }),
+             list.end());
+}
+
+}  // namespace
+
+void setBodyMass(EditorState& state, const std::string& link, double kg) {
+  std::vector<std::string>& masses = state.evolution.settings.body.masses;
+  eraseOverride(masses, link);
+  char value[64];
+  std::snprintf(value, sizeof value, "%.3g", kg);
+  masses.push_back(link + "=" + value);
+}
+
+void clearBodyMass(EditorState& state, const std::string& link) {
+  eraseOverride(state.evolution.settings.body.masses, link);
+}
+
+void setBodyWelded(EditorState& state, const std::string& link, bool welded) {
+  std::vector<std::string>& fixed = state.evolution.settings.body.fixed;
+  eraseOverride(fixed, link);
+  if (welded) fixed.push_back(link);
 }
 
 void advancePlayback(EditorState& state, double dt_s) {

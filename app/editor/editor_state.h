@@ -11,6 +11,7 @@
 #include "editor/evolution.h"
 #include "editor/history.h"
 #include "sinew/motion/asset.h"
+#include "sinew/physics/body_plan.h"
 #include "sinew/spectral/analysis.h"
 #include "sinew/spectral/target_motion.h"
 
@@ -85,6 +86,15 @@ struct EditorState {
   std::vector<std::string> recent_files;  // files and projects, most recent first (kMaxRecentFiles)
   bool frame_requested = false;           // the camera should frame the character next frame
   EvolutionState evolution;               // the search over the loaded rig, if one ran
+  // The body plan of the loaded clip with the project's body overrides (the Body panel); built
+  // on demand by bodyPlan() and rebuilt when the file, clip or overrides change.
+  struct BodyPlanCache {
+    std::optional<physics::BodyPlan> plan;
+    std::string error;            // why there is no plan
+    std::string file;             // what it was built for
+    int clip_index = -1;
+    app::BodyOverrides overrides;
+  } body_cache;
   Log log;
 
   // The chosen clip, or nullptr.
@@ -99,6 +109,16 @@ bool openFile(EditorState& state, const std::filesystem::path& path,
 
 // Chooses another clip of the loaded asset: rewinds playback and analyses it.
 void chooseClip(EditorState& state, int clip_index);
+
+// The body plan of the chosen clip with evolution.settings.body's overrides, or nullptr (then
+// body_cache.error says why).
+const physics::BodyPlan* bodyPlan(EditorState& state);
+
+// Body overrides by link name (replacing an earlier one for the same link): a mass in kg, or
+// welding the joint (fixed) or freeing it again.
+void setBodyMass(EditorState& state, const std::string& link, double kg);
+void clearBodyMass(EditorState& state, const std::string& link);
+void setBodyWelded(EditorState& state, const std::string& link, bool welded);
 
 // Puts `path` first in the recent files.
 void rememberRecent(EditorState& state, const std::string& path);

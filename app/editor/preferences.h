@@ -16,7 +16,8 @@ struct PanelLayout {
   float left_width = 0.0f;         // Files and Log
   float right_width = 0.0f;        // Spectrum and Evolve
   float timeline_height = 0.0f;    // under the viewport
-  float files_fraction = 0.0f;     // of the height: Files above Log
+  float files_fraction = 0.0f;     // of the height: Files at the top of the left column
+  float body_fraction = 0.0f;      // of the height: Body under Files, above Log
   float spectrum_fraction = 0.0f;  // of the height: Spectrum above Evolve
   bool operator==(const PanelLayout&) const = default;
 };

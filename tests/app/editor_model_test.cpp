@@ -319,6 +319,44 @@ TEST_F(EditorModelTest, TheSearchUsesTheProjectsPhysics) {
   EXPECT_NE(state.log.lines().back().text.find("terrain: unknown kind 'lava'"), std::string::npos);
 }
 
+TEST_F(EditorModelTest, BodyOverridesRebuildTheBodyAndUndo) {
+  const physics::BodyPlan* plan = editor::bodyPlan(state);
+  ASSERT_NE(plan, nullptr) << state.body_cache.error;
+  const double total = plan->total_mass_kg;
+  const int dofs = plan->dofCount();
+  int head = -1;
+  for (size_t i = 0; i < plan->links.size(); ++i)
+    if (plan->links[i].name == "Head") head = static_cast<int>(i);
+  ASSERT_GE(head, 0);
+  const double head_kg = plan->links[static_cast<size_t>(head)].mass_kg;
+  ASSERT_EQ(plan->links[static_cast<size_t>(head)].type, physics::JointType::kBall);
+
+  editor::setBodyMass(state, "Head", 8.0);
+  editor::setBodyMass(state, "Head", 9.0);  // replaces, does not add
+  editor::recordHistory(state);
+  editor::setBodyWelded(state, "Head", true);
+  editor::recordHistory(state);
+  EXPECT_EQ(state.evolution.settings.body.masses, std::vector<std::string>{"Head=9"});
+  plan = editor::bodyPlan(state);
+  ASSERT_NE(plan, nullptr) << state.body_cache.error;
+  EXPECT_NEAR(plan->total_mass_kg, total - head_kg + 9.0, 1e-9);
+  EXPECT_EQ(plan->links[static_cast<size_t>(head)].type, physics::JointType::kFixed);
+  EXPECT_EQ(plan->dofCount(), dofs - 3);
+
+  ASSERT_TRUE(editor::undo(state));  // the weld
+  plan = editor::bodyPlan(state);
+  EXPECT_EQ(plan->dofCount(), dofs);
+  ASSERT_TRUE(editor::undo(state));  // the mass
+  plan = editor::bodyPlan(state);
+  EXPECT_NEAR(plan->total_mass_kg, total, 1e-9);
+  // A link the plan does not have: no body, and the reason names it.
+  editor::setBodyMass(state, "Tail", 2.0);
+  EXPECT_EQ(editor::bodyPlan(state), nullptr);
+  EXPECT_NE(state.body_cache.error.find("Tail"), std::string::npos) << state.body_cache.error;
+  editor::clearBodyMass(state, "Tail");
+  EXPECT_NE(editor::bodyPlan(state), nullptr);
+}
+
 TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {
   test::TempDir dir;
   state.evolution.settings.seed = 77;

@@ -8,17 +8,12 @@
 #include <vector>
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include "editor/panels/panels.h"
 
 namespace sinew::editor {
 namespace {
-
-void inputText(const char* label, std::string& text) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer, "%s", text.c_str());
-  if (ImGui::InputText(label, buffer, sizeof buffer)) text = buffer;
-}
 
 void plotHistory(const search::Snapshot& snap) {
   // The best so far after each generation (a generation's own best can be worse than an earlier
@@ -76,27 +71,6 @@ void drawEvolvePanel(EditorState& state) {
   ImGui::SetNextItemWidth(90.0f);
   int seed = static_cast<int>(evolution.settings.seed);
   if (ImGui::InputInt("seed", &seed)) evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
-  if (ImGui::TreeNode("terrain and pushes")) {
-    ImGui::SetNextItemWidth(180.0f);
-    inputText("terrain", evolution.settings.terrain);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("flat | slope:DEG | steps:HEIGHT,DEPTH | rough:AMPLITUDE,SEED");
-    std::vector<std::string>& pushes = evolution.settings.pushes;
-    for (size_t i = 0; i < pushes.size(); ++i) {
-      ImGui::PushID(static_cast<int>(i));
-      ImGui::SetNextItemWidth(180.0f);
-      inputText("push", pushes[i]);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("TIME,X,Y,Z[,LINK]: seconds, N s (Y up)");
-      ImGui::SameLine();
-      const bool remove = ImGui::SmallButton("remove");
-      ImGui::PopID();
-      if (remove) {
-        pushes.erase(pushes.begin() + static_cast<std::ptrdiff_t>(i));
-        break;
-      }
-    }
-    if (ImGui::SmallButton("add a push")) pushes.emplace_back("1.0,-40,0,0");
-    ImGui::TreePop();
-  }
   ImGui::EndDisabled();
   if (ImGui::TreeNode("fitness weights")) {
     // Live: a running search takes them from its next generation.
@@ -150,7 +124,7 @@ void drawEvolvePanel(EditorState& state) {
       }
       plotHistory(snap);
       ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110.0f);
-      inputText("##export", evolution.export_dir);
+      ImGui::InputText("##export", &evolution.export_dir);
       ImGui::SameLine();
       if (ImGui::Button("Export best")) exportEvolutionBest(state);
     }

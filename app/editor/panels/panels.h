@@ -28,5 +28,6 @@ void drawTimelinePanel(EditorState& state);
 void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel);
 void drawLogPanel(EditorState& state);
 void drawEvolvePanel(EditorState& state);
+void drawBodyPanel(EditorState& state);
 
 }  // namespace sinew::editor
