@@ -42,7 +42,7 @@ struct Rect {
 // Fixed regions (ImGui 1.86 has no docking): Files over Log on the left, Spectrum on the right,
 // Timeline under the viewport, the viewport in the middle. Window coordinates.
 struct Layout {
-  Rect files, body, log, spectrum, evolve, timeline, viewport;
+  Rect files, body, log, spectrum, evolve, exporting, timeline, viewport;
 };
 
 // The panels' sizes: the user's (dragged, persisted in the preferences) where set, else defaults
@@ -67,9 +67,13 @@ Layout computeLayout(ImVec2 display, const PanelLayout& user) {
   l.log = {ImVec2(0, files_h + body_h),
            ImVec2(left_w, std::max(display.y - files_h - body_h, 40.0f))};
   const float spectrum_h =
-      std::round(display.y * std::clamp(chosen(user.spectrum_fraction, 0.6f), 0.15f, 0.85f));
+      std::round(display.y * std::clamp(chosen(user.spectrum_fraction, 0.46f), 0.15f, 0.7f));
+  const float evolve_h =
+      std::round(display.y * std::clamp(chosen(user.evolve_fraction, 0.34f), 0.1f, 0.7f));
   l.spectrum = {ImVec2(display.x - right_w, 0), ImVec2(right_w, spectrum_h)};
-  l.evolve = {ImVec2(display.x - right_w, spectrum_h), ImVec2(right_w, display.y - spectrum_h)};
+  l.evolve = {ImVec2(display.x - right_w, spectrum_h), ImVec2(right_w, evolve_h)};
+  l.exporting = {ImVec2(display.x - right_w, spectrum_h + evolve_h),
+                 ImVec2(right_w, std::max(display.y - spectrum_h - evolve_h, 40.0f))};
   l.timeline = {ImVec2(left_w, display.y - timeline_h), ImVec2(centre_w, timeline_h)};
   l.viewport = {ImVec2(left_w, 0), ImVec2(centre_w, std::max(display.y - timeline_h, 1.0f))};
   return l;
@@ -96,6 +100,7 @@ void followResizes(const Layout& placed, ImVec2 display, PanelLayout& user) {
   if (moved(body.y, placed.body.size.y)) user.body_fraction = body.y / display.y;
   if (moved(spectrum.x, placed.spectrum.size.x)) user.right_width = spectrum.x;
   if (moved(evolve.x, placed.evolve.size.x)) user.right_width = evolve.x;
+  if (moved(evolve.y, placed.evolve.size.y)) user.evolve_fraction = evolve.y / display.y;
   if (moved(spectrum.y, placed.spectrum.size.y)) user.spectrum_fraction = spectrum.y / display.y;
   if (moved(timeline.y, placed.timeline.size.y)) user.timeline_height = timeline.y;
 }
@@ -463,6 +468,8 @@ int runEditor(const EditorOptions& options) {
       pollEvolution(state);
       place(layout.evolve);
       drawEvolvePanel(state);
+      place(layout.exporting);
+      drawExportPanel(state);
       handleKeys(state, files_panel, events.keys);
       events.keys.clear();
       if (drawQuitPrompt(state, files_panel, ask_to_quit)) {
@@ -570,7 +577,7 @@ int runEditor(const EditorOptions& options) {
               {"files", &layout.files},       {"body", &layout.body},
               {"log", &layout.log},           {"timeline", &layout.timeline},
               {"spectrum", &layout.spectrum}, {"evolve", &layout.evolve},
-              {"viewport", &layout.viewport}};
+              {"export", &layout.exporting},  {"viewport", &layout.viewport}};
           for (const auto& [name, r] : panels) {
             const std::string path =
                 (std::filesystem::path(options.panel_dir) / (std::string(name) + ".png")).string();

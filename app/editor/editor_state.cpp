@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "sinew/spectral/target_io.h"
+
 namespace sinew::editor {
 
 void Log::add(LogLevel level, std::string text) {
@@ -205,6 +207,64 @@ void setBodyWelded(EditorState& state, const std::string& link, bool welded) {
   std::vector<std::string>& fixed = state.evolution.settings.body.fixed;
   eraseOverride(fixed, link);
   if (welded) fixed.push_back(link);
+}
+
+bool exportChosen(EditorState& state) {
+  ExportSettings& e = state.exporting;
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr || !state.analysis) {
+    state.log.error("export: open a clip that analyses first");
+    return false;
+  }
+  if (e.folder.empty()) e.folder = state.file_path.parent_path().string();
+  if (e.simulated) {
+    state.evolution.export_dir = e.folder;
+    return exportEvolutionBest(state);
+  }
+  if (e.name.empty()) e.name = clip->name + "_model";
+  if (!(e.fps >= 1.0 && e.fps <= 1000.0) || e.strides < 1 || e.strides > 1000) {
+    state.log.error("export: fps must be 1..1000 and strides 1..1000");
+    return false;
+  }
+  if (!e.bvh && !e.gltf && !e.coefficients) {
+    state.log.error("export: choose at least one of BVH, glTF and coefficients");
+    return false;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(e.folder, ec);
+  if (ec) {
+    state.log.error("export: " + e.folder + ": cannot create the folder: " + ec.message());
+    return false;
+  }
+  const std::filesystem::path base = std::filesystem::path(e.folder) / e.name;
+  const spectral::TargetMotion& target = state.analysis->target;
+  const motion::Clip sampled = target.sample(e.fps, e.strides);
+  std::vector<std::string> written;
+  auto write = [&](const std::string& extension, const Status& status) {
+    if (!status.ok()) {
+      state.log.error("export: " + status.message());
+      return false;
+    }
+    written.push_back(base.string() + extension);
+    return true;
+  };
+  bool ok = true;
+  if (e.bvh)
+    ok &= write(".bvh", motion::exportMotion(base.string() + ".bvh", *state.asset, sampled));
+  if (e.gltf)
+    ok &= write(".glb", motion::exportMotion(base.string() + ".glb", *state.asset, sampled));
+  if (e.coefficients)
+    ok &= write(".json",
+                spectral::saveTarget(base.string() + ".json", target, state.asset->skeleton));
+  for (const std::string& path : written) {
+    state.log.info("export: wrote " + path);
+  }
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "export: the model, %d strides of %.3f s at %.0f fps (%d frames)", e.strides,
+                target.period(), e.fps, sampled.frame_count);
+  if (!written.empty()) state.log.info(line);
+  return ok;
 }
 
 void advancePlayback(EditorState& state, double dt_s) {

@@ -67,6 +67,18 @@ struct AnalysisState {
 };
 
 inline constexpr int kMaxK = 16;           // the K sliders' range
+
+// The Export panel's choices. The kinematic target (the model with its K) is sampled at `fps` for
+// `strides` whole strides (the loop closes exactly); the fittest simulated run is written as the
+// search recorded it (best.bvh, best.glb, best.json).
+struct ExportSettings {
+  std::string folder;  // default: beside the opened file
+  std::string name;    // file name without extension; default: the clip's name + "_model"
+  double fps = 30.0;
+  int strides = 4;
+  bool bvh = true, gltf = true, coefficients = true;
+  bool simulated = false;  // the fittest simulated run instead of the kinematic target
+};
 inline constexpr int kMaxRecentFiles = 10;
 
 struct EditorState {
@@ -86,6 +98,7 @@ struct EditorState {
   std::vector<std::string> recent_files;  // files and projects, most recent first (kMaxRecentFiles)
   bool frame_requested = false;           // the camera should frame the character next frame
   EvolutionState evolution;               // the search over the loaded rig, if one ran
+  ExportSettings exporting;
   // The body plan of the loaded clip with the project's body overrides (the Body panel); built
   // on demand by bodyPlan() and rebuilt when the file, clip or overrides change.
   struct BodyPlanCache {
@@ -119,6 +132,9 @@ const physics::BodyPlan* bodyPlan(EditorState& state);
 void setBodyMass(EditorState& state, const std::string& link, double kg);
 void clearBodyMass(EditorState& state, const std::string& link);
 void setBodyWelded(EditorState& state, const std::string& link, bool welded);
+
+// Writes what the Export panel chose; the log names every file written (or why not).
+bool exportChosen(EditorState& state);
 
 // Puts `path` first in the recent files.
 void rememberRecent(EditorState& state, const std::string& path);

@@ -37,6 +37,7 @@ Result<Preferences> loadPreferences(const std::filesystem::path& path) {
       layout.timeline_height = l.value("timeline_height", 0.0f);
       layout.files_fraction = l.value("files_fraction", 0.0f);
       layout.body_fraction = l.value("body_fraction", 0.0f);
+      layout.evolve_fraction = l.value("evolve_fraction", 0.0f);
       layout.spectrum_fraction = l.value("spectrum_fraction", 0.0f);
     }
   } catch (const nlohmann::json::exception& e) {
@@ -62,6 +63,7 @@ Status savePreferences(const Preferences& preferences, const std::filesystem::pa
                                  {"timeline_height", l.timeline_height},
                                  {"files_fraction", l.files_fraction},
                                  {"body_fraction", l.body_fraction},
+                                 {"evolve_fraction", l.evolve_fraction},
                                  {"spectrum_fraction", l.spectrum_fraction}}}};
   return writeFileAtomically(path, json.dump(2) + "\n");
 }

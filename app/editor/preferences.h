@@ -18,7 +18,8 @@ struct PanelLayout {
   float timeline_height = 0.0f;    // under the viewport
   float files_fraction = 0.0f;     // of the height: Files at the top of the left column
   float body_fraction = 0.0f;      // of the height: Body under Files, above Log
-  float spectrum_fraction = 0.0f;  // of the height: Spectrum above Evolve
+  float spectrum_fraction = 0.0f;  // of the height: Spectrum at the top of the right column
+  float evolve_fraction = 0.0f;    // of the height: Evolve under Spectrum, above Export
   bool operator==(const PanelLayout&) const = default;
 };
 

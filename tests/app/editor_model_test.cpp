@@ -10,6 +10,7 @@
 #include "editor/preferences.h"
 #include "editor/project_model.h"
 #include "project/project.h"
+#include "sinew/spectral/target_io.h"
 #include "support/test_support.h"
 
 namespace sinew {
@@ -355,6 +356,43 @@ TEST_F(EditorModelTest, BodyOverridesRebuildTheBodyAndUndo) {
   EXPECT_NE(state.body_cache.error.find("Tail"), std::string::npos) << state.body_cache.error;
   editor::clearBodyMass(state, "Tail");
   EXPECT_NE(editor::bodyPlan(state), nullptr);
+}
+
+TEST_F(EditorModelTest, ExportWritesTheModelThatReimportsAndReloads) {
+  test::TempDir dir;
+  const int leg = jointIndex(state, "LeftUpLeg");
+  std::vector<int> k = state.analysis->joint_k;
+  k[static_cast<size_t>(leg)] = 2;
+  editor::setJointK(state, k);  // the export is of the model as edited
+  state.exporting.folder = (dir / "out").string();
+  state.exporting.name = "walk_k2";
+  state.exporting.fps = 24.0;
+  state.exporting.strides = 3;
+  ASSERT_TRUE(editor::exportChosen(state));
+  const spectral::TargetMotion& target = state.analysis->target;
+  for (const char* extension : {".bvh", ".glb"}) {
+    Result<motion::MotionAsset> back =
+        motion::importMotion(dir / "out" / (std::string("walk_k2") + extension));
+    ASSERT_TRUE(back.ok()) << back.message();
+    const motion::Clip& clip = back.value().clips.front();
+    EXPECT_NEAR(clip.fps(), 24.0, 1e-6) << extension;
+    // Three whole strides, the last frame repeating the first (the loop closes).
+    EXPECT_NEAR((clip.frame_count - 1) / 24.0, 3.0 * target.period(), 0.5 / 24.0 * 3 + 1e-9)
+        << extension;
+  }
+  Result<spectral::TargetMotion> coefficients =
+      spectral::loadTarget(dir / "out" / "walk_k2.json", state.asset->skeleton);
+  ASSERT_TRUE(coefficients.ok()) << coefficients.message();
+  EXPECT_LT(spectral::harmonicDistance(coefficients.value(), target), 1e-9);
+  EXPECT_NE(state.log.lines().back().text.find("3 strides"), std::string::npos);
+  // Nothing chosen: refused, said why.
+  state.exporting.bvh = state.exporting.gltf = state.exporting.coefficients = false;
+  EXPECT_FALSE(editor::exportChosen(state));
+  EXPECT_NE(state.log.lines().back().text.find("choose at least one"), std::string::npos);
+  // The fittest run before any search: refused, said why.
+  state.exporting.simulated = true;
+  EXPECT_FALSE(editor::exportChosen(state));
+  EXPECT_NE(state.log.lines().back().text.find("no generation has finished"), std::string::npos);
 }
 
 TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {

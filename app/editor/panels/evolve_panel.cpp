@@ -1,6 +1,6 @@
 // Evolve: runs the search on the loaded rig from the model being edited and shows it live: the
 // budget and window, start/pause/resume/stop, the generation, the best individual's terms, the
-// best and mean cost per generation, and an export of the best (best.json/.bvh/.glb). The
+// best cost per generation (the Export panel writes the best). The
 // viewport replays the population's runs beside the clip while it is shown.
 #include <algorithm>
 #include <cstdint>
@@ -8,7 +8,6 @@
 #include <vector>
 
 #include <imgui.h>
-#include <imgui_stdlib.h>
 
 #include "editor/panels/panels.h"
 
@@ -35,8 +34,7 @@ void plotHistory(const search::Snapshot& snap) {
 }  // namespace
 
 void drawEvolvePanel(EditorState& state) {
-  ImGui::Begin("Evolve", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                      ImGuiWindowFlags_NoCollapse);
+  ImGui::Begin("Evolve", nullptr, ImGuiWindowFlags_NoCollapse);
   EvolutionState& evolution = state.evolution;
   const std::string run_state = evolution.snapshot ? evolution.snapshot->state : "";
   const bool running = run_state == "running" || run_state == "paused";
@@ -49,11 +47,13 @@ void drawEvolvePanel(EditorState& state) {
   ImGui::BeginDisabled(running);
   ImGui::SetNextItemWidth(120.0f);
   float minutes = static_cast<float>(evolution.settings.minutes);
-  if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f")) evolution.settings.minutes = minutes;
+  if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
+    evolution.settings.minutes = minutes;
   ImGui::SameLine();
   ImGui::SetNextItemWidth(100.0f);
   float window = static_cast<float>(evolution.settings.window_s);
-  if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f")) evolution.settings.window_s = window;
+  if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
+    evolution.settings.window_s = window;
   ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
@@ -70,7 +70,8 @@ void drawEvolvePanel(EditorState& state) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
   int seed = static_cast<int>(evolution.settings.seed);
-  if (ImGui::InputInt("seed", &seed)) evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+  if (ImGui::InputInt("seed", &seed))
+    evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
   ImGui::EndDisabled();
   if (ImGui::TreeNode("fitness weights")) {
     // Live: a running search takes them from its next generation.
@@ -112,8 +113,10 @@ void drawEvolvePanel(EditorState& state) {
       const search::FitnessTerms& t = snap.best_terms;
       ImGui::Text("best: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", t.fell ? "fell after" : "walked",
                   t.survived_s, t.distance_m, t.speed_m_s, t.total);
-      if (ImGui::BeginTable("terms", search::kFitnessTermCount, ImGuiTableFlags_SizingStretchSame)) {
-        for (int k = 0; k < search::kFitnessTermCount; ++k) ImGui::TableSetupColumn(search::fitnessTermName(k));
+      if (ImGui::BeginTable("terms", search::kFitnessTermCount,
+                            ImGuiTableFlags_SizingStretchSame)) {
+        for (int k = 0; k < search::kFitnessTermCount; ++k)
+          ImGui::TableSetupColumn(search::fitnessTermName(k));
         ImGui::TableHeadersRow();
         ImGui::TableNextRow();
         for (int k = 0; k < search::kFitnessTermCount; ++k) {
@@ -123,14 +126,11 @@ void drawEvolvePanel(EditorState& state) {
         ImGui::EndTable();
       }
       plotHistory(snap);
-      ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110.0f);
-      ImGui::InputText("##export", &evolution.export_dir);
-      ImGui::SameLine();
-      if (ImGui::Button("Export best")) exportEvolutionBest(state);
     }
   } else {
-    ImGui::TextWrapped("Evolves the clip's Fourier controller (seeded from the model above) until "
-                       "the simulated character keeps the style without falling.");
+    ImGui::TextWrapped(
+        "Evolves the clip's Fourier controller (seeded from the model above) until "
+        "the simulated character keeps the style without falling.");
   }
   ImGui::End();
 }

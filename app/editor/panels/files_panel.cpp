@@ -14,7 +14,8 @@ namespace {
 std::string suggestedProjectPath(const EditorState& state) {
   if (!state.project_path.empty()) return state.project_path.string();
   if (state.file_path.empty()) return "";
-  return (state.file_path.parent_path() / (state.file_path.stem().string() + ".sinew.json")).string();
+  return (state.file_path.parent_path() / (state.file_path.stem().string() + ".sinew.json"))
+      .string();
 }
 
 void drawProject(EditorState& state, FilesPanelState& panel) {
@@ -30,7 +31,8 @@ void drawProject(EditorState& state, FilesPanelState& panel) {
   ImGui::SameLine();
   ImGui::BeginDisabled(!state.asset);
   if (ImGui::Button("Save")) saveOpenProject(state, panel);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Ctrl+S; an untitled project goes to the path below");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Ctrl+S; an untitled project goes to the path below");
   ImGui::SameLine();
   ImGui::BeginDisabled(!state.history.canUndo());
   if (ImGui::Button("Undo")) undo(state);
@@ -98,7 +100,8 @@ void drawFilesPanel(EditorState& state, FilesPanelState& panel) {
       ImGui::SetNextItemWidth(-1.0f);
       if (ImGui::BeginCombo("##clip", current)) {
         for (int i = 0; i < static_cast<int>(clips.size()); ++i) {
-          if (ImGui::Selectable(clips[static_cast<size_t>(i)].name.c_str(), i == state.clip_index)) {
+          if (ImGui::Selectable(clips[static_cast<size_t>(i)].name.c_str(),
+                                i == state.clip_index)) {
             chooseClip(state, i);
           }
         }

@@ -12,7 +12,7 @@ void drawLogPanel(EditorState& state) {
   }
   if (ImGui::SmallButton("Clear")) state.log.clear();
   ImGui::Separator();
-  ImGui::BeginChild("##lines", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
+  ImGui::BeginChild("##lines", ImVec2(0, 0), false);  // lines wrap: no horizontal scrolling
   for (const LogLine& line : state.log.lines()) {
     const ImVec4 color = line.level == LogLevel::kError     ? ImVec4(1.0f, 0.45f, 0.40f, 1.0f)
                          : line.level == LogLevel::kWarning ? ImVec4(1.0f, 0.78f, 0.35f, 1.0f)

@@ -29,5 +29,6 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel);
 void drawLogPanel(EditorState& state);
 void drawEvolvePanel(EditorState& state);
 void drawBodyPanel(EditorState& state);
+void drawExportPanel(EditorState& state);
 
 }  // namespace sinew::editor

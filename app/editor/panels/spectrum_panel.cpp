@@ -67,7 +67,8 @@ void drawBars(const EditorState& state, int joint) {
   // Horizontal guides at quarters of the largest amplitude, labelled in degrees.
   for (int q = 0; q <= 4; ++q) {
     const float y = plot_max.y - plot_h * q / 4.0f;
-    draw->AddLine(ImVec2(plot_min.x, y), ImVec2(plot_max.x, y), IM_COL32(255, 255, 255, q ? 18 : 50));
+    draw->AddLine(ImVec2(plot_min.x, y), ImVec2(plot_max.x, y),
+                  IM_COL32(255, 255, 255, q ? 18 : 50));
     char text[32];
     std::snprintf(text, sizeof text, "%.1f°", top * q / 4.0);
     draw->AddText(ImVec2(origin.x, y - 7.0f), IM_COL32(150, 155, 165, 255), text);
@@ -119,8 +120,8 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
     ImGui::TextDisabled("similarity %.2f, window %.2f s + %d stride(s)", spectrum.stride.similarity,
                         spectrum.window.start_s, spectrum.window.strides);
   } else {
-    ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.35f, 1.0f), "No stride: whole clip as one cycle (%.2f s)",
-                       spectrum.period_s);
+    ImGui::TextColored(ImVec4(1.0f, 0.78f, 0.35f, 1.0f),
+                       "No stride: whole clip as one cycle (%.2f s)", spectrum.period_s);
   }
   const spectral::JointError& total = analysis.total;
   ImGui::Text("Model error  %.2f° RMS   %.2f cm mean   %.2f cm max", total.rot_err_deg_rms,
@@ -147,7 +148,8 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
     char label[160];
     std::snprintf(label, sizeof label, "%*s%s", 2 * std::min(skeleton.depth(j), 8), "",
                   skeleton.names[static_cast<size_t>(j)].c_str());
-    if (!moves) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    if (!moves)
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     if (ImGui::Selectable(label, state.selected_joint == j)) state.selected_joint = j;
     if (!moves) ImGui::PopStyleColor();
     if (moves) {

@@ -22,7 +22,8 @@ void drawTimelinePanel(EditorState& state) {
   }
   Playback& playback = state.playback;
   const int last = clip->frame_count - 1;
-  int frame = std::clamp(static_cast<int>(std::lround(playback.time_s / clip->frame_time)), 0, last);
+  int frame =
+      std::clamp(static_cast<int>(std::lround(playback.time_s / clip->frame_time)), 0, last);
 
   if (ImGui::Button(playback.playing ? "Pause" : "Play", ImVec2(64.0f, 0.0f))) {
     playback.playing = !playback.playing;

@@ -1,0 +1,59 @@
+// Export: the kinematic target (the model with its K per joint, sampled at a chosen rate for whole
+// strides, as BVH, glTF and coefficients JSON) or the fittest simulated run of the search (BVH,
+// glTF and its controller file). Every file written, or why not, goes to the Log.
+#include <algorithm>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "editor/panels/panels.h"
+
+namespace sinew::editor {
+
+void drawExportPanel(EditorState& state) {
+  if (!ImGui::Begin("Export", nullptr, ImGuiWindowFlags_NoCollapse)) {
+    ImGui::End();
+    return;
+  }
+  ExportSettings& e = state.exporting;
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr || !state.analysis) {
+    ImGui::TextDisabled("Open a clip to export its model.");
+    ImGui::End();
+    return;
+  }
+  if (e.folder.empty()) e.folder = state.file_path.parent_path().string();
+  if (e.name.empty()) e.name = clip->name + "_model";
+  const bool have_best = state.evolution.snapshot && !state.evolution.snapshot->best_point.empty();
+  if (ImGui::RadioButton("the model", !e.simulated)) e.simulated = false;
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!have_best);
+  if (ImGui::RadioButton("the fittest simulated run", e.simulated)) e.simulated = true;
+  ImGui::EndDisabled();
+  if (!have_best && e.simulated) e.simulated = false;
+  ImGui::SetNextItemWidth(-60.0f);
+  ImGui::InputText("folder", &e.folder);
+  if (!e.simulated) {
+    ImGui::SetNextItemWidth(160.0f);
+    ImGui::InputText("name", &e.name);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(60.0f);
+    float fps = static_cast<float>(e.fps);
+    if (ImGui::DragFloat("fps", &fps, 1.0f, 1.0f, 240.0f, "%.0f"))
+      e.fps = std::clamp(fps, 1.0f, 240.0f);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(60.0f);
+    ImGui::DragInt("strides", &e.strides, 0.2f, 1, 100);
+    ImGui::Checkbox("BVH", &e.bvh);
+    ImGui::SameLine();
+    ImGui::Checkbox("glTF (.glb)", &e.gltf);
+    ImGui::SameLine();
+    ImGui::Checkbox("coefficients (.json)", &e.coefficients);
+  } else {
+    ImGui::TextDisabled("best.bvh, best.glb and best.json (replay: sinew simulate --controller)");
+  }
+  if (ImGui::Button("Export", ImVec2(100.0f, 0.0f))) exportChosen(state);
+  ImGui::End();
+}
+
+}  // namespace sinew::editor
