@@ -13,7 +13,9 @@ glm::vec3 OrbitCamera::eye() const {
   return target + dir * distance;
 }
 
-glm::mat4 OrbitCamera::view() const { return glm::lookAt(eye(), target, glm::vec3(0, 1, 0)); }
+glm::mat4 OrbitCamera::view() const {
+  return glm::lookAt(eye(), target, glm::vec3(0, 1, 0));
+}
 
 glm::mat4 OrbitCamera::projection(float aspect) const {
   const float near_m = std::max(0.01f, distance * 0.01f);
@@ -42,6 +44,15 @@ void OrbitCamera::frame(const glm::vec3& lo, const glm::vec3& hi) {
   target = 0.5f * (lo + hi);
   const float radius = std::max(0.5f * glm::length(hi - lo), 0.05f);
   distance = radius / std::sin(fov_y * 0.5f) * 1.05f;
+}
+
+glm::vec3 OrbitCamera::rayDirection(float x_ndc, float y_ndc, float aspect) const {
+  const glm::mat4 inverse = glm::inverse(projection(aspect) * view());
+  glm::vec4 near_point = inverse * glm::vec4(x_ndc, y_ndc, -1.0f, 1.0f);
+  glm::vec4 far_point = inverse * glm::vec4(x_ndc, y_ndc, 1.0f, 1.0f);
+  near_point /= near_point.w;
+  far_point /= far_point.w;
+  return glm::normalize(glm::vec3(far_point - near_point));
 }
 
 }  // namespace sinew::editor

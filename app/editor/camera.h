@@ -22,6 +22,9 @@ struct OrbitCamera {
   void pan(float dx_px, float dy_px, float viewport_h_px);   // keeps the point under the mouse
   void zoom(float wheel_steps);                              // + zooms in
   void frame(const glm::vec3& lo, const glm::vec3& hi);      // fits the box in view
+  // The world-space direction (unit) through a point of the view, in normalised device
+  // coordinates (-1..1, Y up); the ray starts at eye().
+  glm::vec3 rayDirection(float x_ndc, float y_ndc, float aspect) const;
 };
 
 }  // namespace sinew::editor

@@ -108,6 +108,8 @@ void followResizes(const Layout& placed, ImVec2 display, PanelLayout& user) {
 struct ViewportDrag {
   bool orbit = false;
   bool pan = false;
+  ImVec2 pressed_at{0, 0};  // where the left button went down in the viewport
+  bool click = false;       // released there without dragging: pick what is under it
 };
 
 // LMB orbit, MMB or Shift+LMB pan, wheel zoom; only when the mouse is over the viewport (or a
@@ -115,12 +117,18 @@ struct ViewportDrag {
 void handleViewportMouse(OrbitCamera& camera, ViewportDrag& drag, const Rect& viewport) {
   const ImGuiIO& io = ImGui::GetIO();
   const bool hovered = !io.WantCaptureMouse && viewport.contains(io.MousePos);
+  drag.click = false;
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
     (io.KeyShift ? drag.pan : drag.orbit) = true;
+    drag.pressed_at = io.MousePos;
   }
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Middle)) drag.pan = true;
+  if (drag.orbit && ImGui::IsMouseReleased(ImGuiMouseButton_Left)) {
+    const float dx = io.MousePos.x - drag.pressed_at.x, dy = io.MousePos.y - drag.pressed_at.y;
+    drag.click = dx * dx + dy * dy < 16.0f;  // moved less than 4 pixels: a click, not an orbit
+  }
   if (!ImGui::IsMouseDown(ImGuiMouseButton_Left) && !ImGui::IsMouseDown(ImGuiMouseButton_Middle)) {
-    drag = {};
+    drag.orbit = drag.pan = false;
   }
   if (drag.orbit) camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
   if (drag.pan) camera.pan(io.MouseDelta.x, io.MouseDelta.y, viewport.size.y);
@@ -481,6 +489,15 @@ int runEditor(const EditorOptions& options) {
       if (!ImGui::IsAnyItemActive()) recordHistory(state);
       handleViewportMouse(camera, drag, layout.viewport);
       const Scene scene = buildScene(state);
+      if (drag.click && !scene.individuals.empty()) {
+        // A click on an individual of the population shows its fitness in the Evolve panel.
+        const Rect& v = layout.viewport;
+        const ImVec2 mouse = ImGui::GetIO().MousePos;
+        const float x = (mouse.x - v.pos.x) / v.size.x * 2.0f - 1.0f;
+        const float y = 1.0f - (mouse.y - v.pos.y) / v.size.y * 2.0f;
+        state.evolution.selected =
+            pickIndividual(scene, camera.eye(), camera.rayDirection(x, y, v.size.x / v.size.y));
+      }
       updateCamera(camera, state, scene, dt);
       drawOverlay(state, layout.viewport, frame_times, renderer.ready());
       ImGui::Render();

@@ -70,6 +70,7 @@ bool startEvolution(EditorState& state) {
   }
   evolution.session = std::move(session).value();
   evolution.reported_generation = 0;
+  evolution.selected = -1;
   evolution.snapshot = evolution.session->snapshot();
   evolution.session->start();
   char line[200];
@@ -137,6 +138,7 @@ void pollEvolution(EditorState& state) {
     std::snprintf(line, sizeof line, "generation %d (%lld evaluations, %.0f s): best ",
                   r.generation, r.evaluations, r.wall_s);
     state.log.info(line + termsLine(snap.best_terms));
+    evolution.selected = -1;  // its index would point at another individual now
   }
 }
 

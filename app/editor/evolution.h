@@ -38,6 +38,8 @@ struct EvolutionState {
   std::shared_ptr<const search::Snapshot> snapshot;  // the latest published
   int reported_generation = 0;  // the last generation written to the log
   bool show_population = true;  // draw the population's runs beside the clip
+  int selected = -1;  // the individual clicked in the viewport (index in the snapshot's
+                      // population), -1 for none; cleared when a new generation arrives
   std::string export_dir;        // where "Export best" writes; default beside the opened file
 };
 

@@ -18,6 +18,7 @@ const glm::vec4 kModelColor{0.45f, 0.95f, 0.85f, 0.5f};
 const glm::vec4 kModelSelectedColor{1.00f, 0.80f, 0.30f, 0.55f};
 const glm::vec4 kBestColor{0.55f, 1.00f, 0.45f, 0.85f};        // the population's best run
 const glm::vec4 kIndividualColor{0.72f, 0.64f, 1.00f, 0.55f};  // the others
+const glm::vec4 kPickedColor{1.00f, 0.95f, 0.80f, 0.90f};      // the one clicked
 
 bool containsNoCase(const std::string& text, const char* word) {
   std::string lower = text;
@@ -135,9 +136,9 @@ Scene buildScene(const EditorState& state) {
                   state.selected_joint, &kModelColor, scene.translucent);
     }
   }
-  // The search's population, best first, in a row on the other side: each run replayed at the
-  // playback time (its own 10 s loop), kept beside the clip's root so the camera keeps them all.
-  // They stay out of the bounds: the camera keeps framing the clip and its model.
+  // The search's population, best first, in a grid on the other side (rows of eight, further rows
+  // behind): each run replayed at the playback time (its own 10 s loop), travel removed so they
+  // stay beside the clip. They stay out of the bounds: the camera keeps framing the clip.
   std::vector<CapsuleInstance> population;
   const EvolutionState& evolution = state.evolution;
   if (evolution.show_population && evolution.snapshot &&
@@ -148,11 +149,15 @@ Scene buildScene(const EditorState& state) {
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
       return snap.population_terms[a].total < snap.population_terms[b].total;
     });
-    const glm::dvec3 v = state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0);
+    const glm::dvec3 v =
+        state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0);
     glm::vec3 side(1.0f, 0.0f, 0.0f);
     if (glm::length(glm::dvec2(v.x, v.z)) > 1e-3)
       side = glm::normalize(glm::vec3(static_cast<float>(v.z), 0.0f, static_cast<float>(-v.x)));
-    const size_t shown = std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
+    const glm::vec3 forward(-side.z, 0.0f, side.x);
+    constexpr size_t kColumns = 8;  // the default 8 in one row; 16 in two
+    const size_t shown =
+        std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
     std::vector<glm::dmat4> run_world(static_cast<size_t>(joints));
     for (size_t rank = 0; rank < shown; ++rank) {
       const motion::Clip& run = snap.population_motions[order[rank]];
@@ -164,9 +169,22 @@ Scene buildScene(const EditorState& state) {
       // Travel removed (the run stays beside the clip), height and falls kept.
       glm::vec3 offset = scene.root - glm::vec3(run_world[0][3]);
       offset.y = 0.0f;
-      offset -= side * (0.5f * height * static_cast<float>(rank + 1));
+      offset -= side * (0.5f * height * static_cast<float>(rank % kColumns + 1));
+      offset -= forward * (0.7f * height * static_cast<float>(rank / kColumns));
+      const size_t first = population.size();
+      const bool picked = static_cast<int>(order[rank]) == evolution.selected;
       appendBones(skeleton, run_world, offset, radius * 0.9f, false, -1,
-                  rank == 0 ? &kBestColor : &kIndividualColor, population);
+                  picked      ? &kPickedColor
+                  : rank == 0 ? &kBestColor
+                              : &kIndividualColor,
+                  population);
+      PickBox box{static_cast<int>(order[rank]), glm::vec3(1e30f), glm::vec3(-1e30f)};
+      for (size_t i = first; i < population.size(); ++i) {
+        const CapsuleInstance& c = population[i];
+        box.lo = glm::min(box.lo, glm::min(c.a, c.b) - c.radius);
+        box.hi = glm::max(box.hi, glm::max(c.a, c.b) + c.radius);
+      }
+      if (population.size() > first) scene.individuals.push_back(box);
     }
   }
 
@@ -178,6 +196,31 @@ Scene buildScene(const EditorState& state) {
   scene.empty = scene.opaque.empty() && scene.translucent.empty();
   if (scene.empty) scene.bounds_min = scene.bounds_max = scene.root;
   return scene;
+}
+
+int pickIndividual(const Scene& scene, const glm::vec3& origin, const glm::vec3& direction) {
+  int best = -1;
+  float nearest = 1e30f;
+  for (const PickBox& box : scene.individuals) {
+    // Slabs: the ray's entry and exit distances through the box.
+    float enter = 0.0f, leave = 1e30f;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (std::abs(direction[axis]) < 1e-8f) {
+        if (origin[axis] < box.lo[axis] || origin[axis] > box.hi[axis]) leave = -1.0f;
+        continue;
+      }
+      float t0 = (box.lo[axis] - origin[axis]) / direction[axis];
+      float t1 = (box.hi[axis] - origin[axis]) / direction[axis];
+      if (t0 > t1) std::swap(t0, t1);
+      enter = std::max(enter, t0);
+      leave = std::min(leave, t1);
+    }
+    if (enter <= leave && enter < nearest) {
+      nearest = enter;
+      best = box.individual;
+    }
+  }
+  return best;
 }
 
 }  // namespace sinew::editor

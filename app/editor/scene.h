@@ -20,6 +20,13 @@ struct CapsuleInstance {
   glm::vec4 color{1.0f};   // linear RGB and opacity
 };
 
+// One individual of the population as drawn: its index in the snapshot and the box around its
+// capsules, for picking with the mouse.
+struct PickBox {
+  int individual = -1;
+  glm::vec3 lo{0.0f}, hi{0.0f};
+};
+
 struct Scene {
   std::vector<CapsuleInstance> opaque;       // the original clip
   std::vector<CapsuleInstance> translucent;  // the model, drawn after, blended
@@ -27,7 +34,11 @@ struct Scene {
   glm::vec3 bounds_max{0.0f};
   glm::vec3 root{0.0f};                      // the original's root joint, metres (follow target)
   bool empty = true;
+  std::vector<PickBox> individuals;          // the population's runs drawn, best first
 };
+
+// The individual whose box the ray (from origin along unit direction) enters first, or -1.
+int pickIndividual(const Scene& scene, const glm::vec3& origin, const glm::vec3& direction);
 
 // The scene at the state's playback time.
 Scene buildScene(const EditorState& state);

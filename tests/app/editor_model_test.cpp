@@ -1,14 +1,18 @@
 // The editor's command and state model without a window: projects (load, save, round trip, bad
 // files), undo and redo of settings, unsaved changes, the recovery file and the preferences.
+#include <chrono>
 #include <filesystem>
+#include <thread>
 
 #include <gtest/gtest.h>
 
+#include "editor/camera.h"
 #include "editor/editor_state.h"
 #include "editor/evolution.h"
 #include "editor/history.h"
 #include "editor/preferences.h"
 #include "editor/project_model.h"
+#include "editor/scene.h"
 #include "project/project.h"
 #include "sinew/spectral/target_io.h"
 #include "support/test_support.h"
@@ -393,6 +397,38 @@ TEST_F(EditorModelTest, ExportWritesTheModelThatReimportsAndReloads) {
   state.exporting.simulated = true;
   EXPECT_FALSE(editor::exportChosen(state));
   EXPECT_NE(state.log.lines().back().text.find("no generation has finished"), std::string::npos);
+}
+
+TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
+  editor::EvolutionSettings& settings = state.evolution.settings;
+  settings.window_s = 1.0;
+  settings.population = 8;
+  settings.minutes = 1.0;
+  ASSERT_TRUE(editor::startEvolution(state));
+  for (int i = 0;
+       i < 600 && (!state.evolution.snapshot || state.evolution.snapshot->generation < 1); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    editor::pollEvolution(state);
+  }
+  editor::stopEvolution(state);
+  ASSERT_GE(state.evolution.snapshot->generation, 1);
+  const editor::Scene scene = editor::buildScene(state);
+  ASSERT_EQ(scene.individuals.size(), 8u);  // the whole population is drawn (shown 8)
+  editor::OrbitCamera camera;
+  camera.frame(scene.bounds_min, scene.bounds_max);
+  camera.distance *= 3.0f;  // everyone in view
+  camera.pitch = 1.5f;      // from above: the grid's boxes do not hide one another
+  for (const editor::PickBox& box : scene.individuals) {
+    // Aim at the box's middle: project it to the view and cast the ray back through that point.
+    const glm::vec3 centre = 0.5f * (box.lo + box.hi);
+    const float aspect = 1.5f;
+    const glm::vec4 clip = camera.projection(aspect) * camera.view() * glm::vec4(centre, 1.0f);
+    const glm::vec3 direction = camera.rayDirection(clip.x / clip.w, clip.y / clip.w, aspect);
+    EXPECT_LT(glm::length(direction - glm::normalize(centre - camera.eye())), 1e-3f);
+    EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), direction), box.individual);
+  }
+  // Straight up from the camera: nobody.
+  EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), glm::vec3(0.0f, 1.0f, 0.0f)), -1);
 }
 
 TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {

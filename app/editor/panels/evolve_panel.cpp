@@ -110,9 +110,24 @@ void drawEvolvePanel(EditorState& state) {
                 snap.generation, snap.evaluations, wall,
                 wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
     if (!snap.best_point.empty()) {
-      const search::FitnessTerms& t = snap.best_terms;
-      ImGui::Text("best: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", t.fell ? "fell after" : "walked",
-                  t.survived_s, t.distance_m, t.speed_m_s, t.total);
+      // The individual clicked in the viewport, or the best so far.
+      const int picked = evolution.selected;
+      const bool show_picked =
+          picked >= 0 && picked < static_cast<int>(snap.population_terms.size());
+      const search::FitnessTerms& t =
+          show_picked ? snap.population_terms[static_cast<size_t>(picked)] : snap.best_terms;
+      if (show_picked) {
+        int rank = 1;
+        for (const search::FitnessTerms& other : snap.population_terms)
+          rank += other.total < t.total;
+        ImGui::TextColored(ImVec4(1.0f, 0.95f, 0.8f, 1.0f), "clicked: #%d of %zu in generation %d",
+                           rank, snap.population_terms.size(), snap.generation);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("show the best")) evolution.selected = -1;
+      }
+      ImGui::Text("%s: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", show_picked ? "it" : "best",
+                  t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s,
+                  t.total);
       if (ImGui::BeginTable("terms", search::kFitnessTermCount,
                             ImGuiTableFlags_SizingStretchSame)) {
         for (int k = 0; k < search::kFitnessTermCount; ++k)
