@@ -415,17 +415,19 @@ TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
   const editor::Scene scene = editor::buildScene(state);
   ASSERT_EQ(scene.individuals.size(), 8u);  // the whole population is drawn (shown 8)
   editor::OrbitCamera camera;
-  camera.frame(scene.bounds_min, scene.bounds_max);
-  camera.distance *= 3.0f;  // everyone in view
-  camera.pitch = 1.5f;      // from above: the grid's boxes do not hide one another
+  camera.pitch = 1.5f;  // from above, so that neighbours do not hide one another
+  camera.distance = 6.0f;
+  const float aspect = 1.5f;
   for (const editor::PickBox& box : scene.individuals) {
-    // Aim at the box's middle: project it to the view and cast the ray back through that point.
-    const glm::vec3 centre = 0.5f * (box.lo + box.hi);
-    const float aspect = 1.5f;
-    const glm::vec4 clip = camera.projection(aspect) * camera.view() * glm::vec4(centre, 1.0f);
+    // The camera over this individual: a click at the middle of the view picks it, a click at a
+    // point projected from its box's middle too.
+    camera.target = 0.5f * (box.lo + box.hi);
+    EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), camera.rayDirection(0.0f, 0.0f, aspect)),
+              box.individual);
+    const glm::vec4 clip =
+        camera.projection(aspect) * camera.view() * glm::vec4(camera.target, 1.0f);
     const glm::vec3 direction = camera.rayDirection(clip.x / clip.w, clip.y / clip.w, aspect);
-    EXPECT_LT(glm::length(direction - glm::normalize(centre - camera.eye())), 1e-3f);
-    EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), direction), box.individual);
+    EXPECT_LT(glm::length(direction - glm::normalize(camera.target - camera.eye())), 1e-3f);
   }
   // Straight up from the camera: nobody.
   EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), glm::vec3(0.0f, 1.0f, 0.0f)), -1);
