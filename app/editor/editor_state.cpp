@@ -267,6 +267,48 @@ bool exportChosen(EditorState& state) {
   return ok;
 }
 
+bool setAutoK(EditorState& state, double tolerance_cm) {
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr || !state.analysis) return false;
+  spectral::AnalysisSettings settings;
+  settings.auto_harmonics = true;
+  settings.tolerance_cm = tolerance_cm;
+  Result<spectral::MotionSpectrum> spectrum =
+      spectral::analyze(state.asset->skeleton, *clip, settings);
+  if (!spectrum.ok()) {
+    state.log.error("auto K: " + spectrum.message());
+    return false;
+  }
+  setJointK(state, spectrum.value().joint_k);
+  int coefficients = 0;
+  for (const spectral::SignalChannel& channel : state.analysis->spectrum.signals.channels) {
+    coefficients += 1 + 2 * state.analysis->joint_k[static_cast<size_t>(channel.joint)];
+  }
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "auto K (worst position under %.2f cm): %d coefficients, %.2f cm max, %.2f deg RMS",
+                tolerance_cm, coefficients, state.analysis->total.pos_err_cm_max,
+                state.analysis->total.rot_err_deg_rms);
+  state.log.info(line);
+  return true;
+}
+
+const spectral::ImportanceReport* rankJoints(EditorState& state) {
+  const motion::Clip* clip = state.clip();
+  if (clip == nullptr || !state.analysis) return nullptr;
+  AnalysisState& analysis = *state.analysis;
+  if (!analysis.importance) {
+    Result<spectral::ImportanceReport> report =
+        spectral::jointImportance(state.asset->skeleton, *clip, analysis.spectrum);
+    if (!report.ok()) {
+      state.log.error("joint importance: " + report.message());
+      return nullptr;
+    }
+    analysis.importance = std::move(report).value();
+  }
+  return &*analysis.importance;
+}
+
 void advancePlayback(EditorState& state, double dt_s) {
   const motion::Clip* clip = state.clip();
   Playback& playback = state.playback;

@@ -13,6 +13,7 @@
 #include "sinew/motion/asset.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/spectral/analysis.h"
+#include "sinew/spectral/importance.h"
 #include "sinew/spectral/target_motion.h"
 
 namespace sinew::editor {
@@ -64,6 +65,9 @@ struct AnalysisState {
   spectral::TargetMotion target;          // the model with joint_k, continuous in time
   std::vector<spectral::JointError> errors;  // (joints) error of the model with joint_k
   spectral::JointError total;
+  // Joint importance (the Spectrum panel's ranking), computed when first asked for; cleared
+  // with the analysis. Depends on the clip only, not on K.
+  std::optional<spectral::ImportanceReport> importance;
 };
 
 inline constexpr int kMaxK = 16;           // the K sliders' range
@@ -138,6 +142,14 @@ bool exportChosen(EditorState& state);
 
 // Puts `path` first in the recent files.
 void rememberRecent(EditorState& state, const std::string& path);
+
+// K per joint chosen by the analysis's `auto`: the fewest harmonics per joint keeping the worst
+// joint position error under `tolerance_cm`. Logs the coefficients and the error it reached.
+bool setAutoK(EditorState& state, double tolerance_cm);
+
+// The joints ranked by how much the motion loses when each is frozen at its mean (computed once
+// per clip, then cached); nullptr when there is no analysis or it failed (logged).
+const spectral::ImportanceReport* rankJoints(EditorState& state);
 
 // Sets K per joint (clamped to 0..kMaxK) and rebuilds the model and its error.
 void setJointK(EditorState& state, std::vector<int> joint_k);

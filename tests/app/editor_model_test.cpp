@@ -433,6 +433,34 @@ TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
   EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), glm::vec3(0.0f, 1.0f, 0.0f)), -1);
 }
 
+TEST_F(EditorModelTest, AutoKMeetsItsToleranceWithFewerCoefficientsAndTheRankingPutsTheHipsHigh) {
+  const int before = [&] {
+    int n = 0;
+    for (int k : state.analysis->joint_k) n += k;
+    return n;
+  }();
+  ASSERT_TRUE(editor::setAutoK(state, 1.0));
+  EXPECT_LE(state.analysis->total.pos_err_cm_max, 1.0);
+  int after = 0;
+  for (int k : state.analysis->joint_k) after += k;
+  EXPECT_LT(after, before);
+  EXPECT_TRUE(state.history.record(editor::captureProject(state)));  // an undoable change
+  const spectral::ImportanceReport* report = editor::rankJoints(state);
+  ASSERT_NE(report, nullptr);
+  ASSERT_GE(report->joints.size(), 3u);
+  for (size_t i = 1; i < report->joints.size(); ++i)
+    EXPECT_GE(report->joints[i - 1].frozen_cm_mean, report->joints[i].frozen_cm_mean);
+  // Freezing a thigh costs the walk more than freezing the head.
+  auto cost = [&](const std::string& name) {
+    for (const spectral::JointImportance& j : report->joints)
+      if (state.asset->skeleton.names[static_cast<size_t>(j.joint)] == name)
+        return j.frozen_cm_mean;
+    return -1.0;
+  };
+  EXPECT_GT(cost("LeftUpLeg"), cost("Head"));
+  EXPECT_EQ(editor::rankJoints(state), report);  // cached
+}
+
 TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {
   test::TempDir dir;
   state.evolution.settings.seed = 77;

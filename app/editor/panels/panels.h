@@ -21,6 +21,9 @@ void saveOpenProject(EditorState& state, FilesPanelState& panel);
 struct SpectrumPanelState {
   int global_k = 5;        // the "all joints" slider
   bool joints_moving_only = true;  // hide joints that do not move in the list
+  float tolerance_cm = 1.0f;       // for "auto"
+  bool show_curves = false;        // the chosen joint's curves instead of its harmonic bars
+  bool show_ranking = false;       // the joints ranked by importance instead of the joint list
 };
 
 void drawFilesPanel(EditorState& state, FilesPanelState& panel);

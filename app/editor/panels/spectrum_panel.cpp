@@ -1,7 +1,8 @@
-// Spectrum: the stride and the model's total error on top, a K slider for all joints, the joint
-// list (K and error per joint), and for the chosen joint its harmonic amplitudes as bars (n =
-// 1..12, rotation axes X/Y/Z in red/green/blue; kept harmonics filled, discarded ones outlined)
-// with its own K slider. Every K change re-runs the reconstruction and shows the error live.
+// Spectrum: the stride and the model's total error on top, a K slider for all joints and `auto`
+// with a tolerance, the joint list (K per joint; or ranked by importance), and for the chosen
+// joint its harmonic amplitudes as bars (n = 1..12, rotation axes X/Y/Z in red/green/blue; kept
+// harmonics filled, discarded ones outlined) or its curves (original vs model), with its own K
+// slider. Every K change re-runs the reconstruction and shows the error live.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -97,6 +98,109 @@ void drawBars(const EditorState& state, int joint) {
   ImGui::Dummy(ImVec2(width, height));
 }
 
+// The chosen joint's rotation channels over the analysed window: the original (solid) and the
+// model with the joint's K (dashed look: thinner, brighter), degrees, per axis in its colour.
+void drawCurves(const EditorState& state, int joint) {
+  const AnalysisState& analysis = *state.analysis;
+  const spectral::MotionSpectrum& spectrum = analysis.spectrum;
+  const int k = analysis.joint_k[static_cast<size_t>(joint)];
+  const double dt = spectrum.signals.frame_time;
+  const double start = spectrum.window.start_s;
+  const double span = spectrum.period_s * std::max(spectrum.window.strides, 1);
+  const int first = std::max(static_cast<int>(std::floor(start / dt)), 0);
+  const int last =
+      std::min(static_cast<int>(std::ceil((start + span) / dt)), spectrum.signals.frame_count - 1);
+  if (last <= first) return;
+  struct Curve {
+    std::vector<ImVec2> original, model;
+    int axis;
+  };
+  std::vector<Curve> curves;
+  double lo = 1e30, hi = -1e30;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int c = spectrum.signals.find(joint, spectral::SignalKind::kRotation, axis);
+    if (c < 0) continue;
+    const spectral::SignalChannel& channel = spectrum.signals.channels[static_cast<size_t>(c)];
+    const spectral::HarmonicSeries& series = spectrum.series[static_cast<size_t>(c)];
+    const std::vector<spectral::Harmonic> terms = series.strongest(k);
+    Curve curve{{}, {}, axis};
+    for (int f = first; f <= last; ++f) {
+      const double t = f * dt;
+      const double o = channel.values[static_cast<size_t>(f)] * kDegPerRad;
+      const double m =
+          spectral::evaluate(series.mean, terms, spectrum.omega0, t - start) * kDegPerRad;
+      curve.original.emplace_back(static_cast<float>(t), static_cast<float>(o));
+      curve.model.emplace_back(static_cast<float>(t), static_cast<float>(m));
+      lo = std::min({lo, o, m});
+      hi = std::max({hi, o, m});
+    }
+    curves.push_back(std::move(curve));
+  }
+  if (curves.empty()) {
+    ImGui::TextDisabled("This joint does not rotate in this clip.");
+    return;
+  }
+  if (hi - lo < 1e-3) hi = lo + 1e-3;
+  const float height = std::clamp(ImGui::GetContentRegionAvail().y - 4.0f, 120.0f, 300.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  const ImVec2 plot_min(origin.x + 44.0f, origin.y + 8.0f);
+  const ImVec2 plot_max(origin.x + width - 4.0f, origin.y + height - 20.0f);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(plot_min, plot_max, IM_COL32(30, 32, 37, 255), 3.0f);
+  auto at = [&](ImVec2 p) {
+    const float x = plot_min.x + (p.x - static_cast<float>(first * dt)) /
+                                     static_cast<float>((last - first) * dt) *
+                                     (plot_max.x - plot_min.x);
+    const float y =
+        plot_max.y - static_cast<float>((p.y - lo) / (hi - lo)) * (plot_max.y - plot_min.y);
+    return ImVec2(x, y);
+  };
+  for (int q = 0; q <= 2; ++q) {
+    const double value = lo + (hi - lo) * q / 2.0;
+    const float y = plot_max.y - (plot_max.y - plot_min.y) * q / 2.0f;
+    draw->AddLine(ImVec2(plot_min.x, y), ImVec2(plot_max.x, y), IM_COL32(255, 255, 255, 25));
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f°", value);
+    draw->AddText(ImVec2(origin.x, y - 7.0f), IM_COL32(150, 155, 165, 255), text);
+  }
+  for (const Curve& curve : curves) {
+    std::vector<ImVec2> points;
+    for (const ImVec2& p : curve.original) points.push_back(at(p));
+    draw->AddPolyline(points.data(), static_cast<int>(points.size()),
+                      kAxisColors[curve.axis] & IM_COL32(255, 255, 255, 120), 0, 3.0f);
+    points.clear();
+    for (const ImVec2& p : curve.model) points.push_back(at(p));
+    draw->AddPolyline(points.data(), static_cast<int>(points.size()), IM_COL32(240, 240, 240, 230),
+                      0, 1.2f);
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "%.2f s .. %.2f s, model K = %d", first * dt, last * dt, k);
+  draw->AddText(ImVec2(plot_min.x, plot_max.y + 3.0f), IM_COL32(170, 175, 185, 255), text);
+  ImGui::Dummy(ImVec2(width, height));
+}
+
+// The joints ranked by the position error their freezing would cost: the paper's "which joints
+// could be removed". Click one to choose it.
+void drawRanking(EditorState& state) {
+  const spectral::ImportanceReport* report = rankJoints(state);
+  if (report == nullptr) return;
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  ImGui::TextDisabled("frozen: cm mean");
+  for (const spectral::JointImportance& j : report->joints) {
+    char label[160];
+    std::snprintf(label, sizeof label, "%-14s %5.2f",
+                  skeleton.names[static_cast<size_t>(j.joint)].c_str(), j.frozen_cm_mean);
+    if (ImGui::Selectable(label, state.selected_joint == j.joint)) state.selected_joint = j.joint;
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "Frozen at its mean, the motion is off by %.2f cm on average (%.2f cm at "
+          "worst); the model itself is off by %.2f cm",
+          j.frozen_cm_mean, j.frozen_cm_max, report->model_cm_mean);
+    }
+  }
+}
+
 }  // namespace
 
 void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
@@ -132,17 +236,31 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
   }
   ImGui::TextDisabled("%d coefficients over %zu channels", coefficients,
                       spectrum.signals.channels.size());
-  ImGui::SetNextItemWidth(-110.0f);
+  ImGui::SetNextItemWidth(std::max(ImGui::GetContentRegionAvail().x - 290.0f, 80.0f));
   if (ImGui::SliderInt("K all joints", &panel.global_k, 0, kMaxK)) {
     setJointK(state, std::vector<int>(analysis.joint_k.size(), panel.global_k));
   }
+  ImGui::SameLine();
+  if (ImGui::Button("auto")) setAutoK(state, panel.tolerance_cm);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("The fewest harmonics per joint keeping every joint within the tolerance");
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70.0f);
+  ImGui::DragFloat("cm", &panel.tolerance_cm, 0.05f, 0.1f, 10.0f, "%.2f");
   ImGui::Separator();
 
   // Left: the joint list. Right: the chosen joint.
   const float list_w = 190.0f;
   ImGui::BeginChild("##joints", ImVec2(list_w, 0), true);
-  ImGui::Checkbox("moving only", &panel.joints_moving_only);
-  for (int j = 0; j < skeleton.jointCount(); ++j) {
+  ImGui::Checkbox("ranked", &panel.show_ranking);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("By what freezing each joint would cost");
+  if (!panel.show_ranking) {
+    ImGui::SameLine();
+    ImGui::Checkbox("moving", &panel.joints_moving_only);
+  }
+  if (panel.show_ranking) drawRanking(state);
+  for (int j = 0; j < skeleton.jointCount() && !panel.show_ranking; ++j) {
     const bool moves = jointMoves(spectrum, j);
     if (panel.joints_moving_only && !moves) continue;
     char label[160];
@@ -163,6 +281,8 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
   ImGui::BeginChild("##joint", ImVec2(0, 0), false);
   const int joint = std::clamp(state.selected_joint, 0, skeleton.jointCount() - 1);
   ImGui::Text("%s", skeleton.names[static_cast<size_t>(joint)].c_str());
+  ImGui::SameLine(std::max(ImGui::GetContentRegionAvail().x - 70.0f, 80.0f));
+  ImGui::Checkbox("curves", &panel.show_curves);
   int k = analysis.joint_k[static_cast<size_t>(joint)];
   ImGui::SetNextItemWidth(-30.0f);
   if (ImGui::SliderInt("K", &k, 0, kMaxK)) {
@@ -179,8 +299,13 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
   ImGui::SameLine();
   ImGui::TextColored(ImVec4(0.33f, 0.57f, 0.94f, 1.0f), "Z");
   ImGui::SameLine();
-  ImGui::TextDisabled(" filled kept, outlined dropped");
-  drawBars(state, joint);
+  ImGui::TextDisabled(panel.show_curves ? " original wide, model white"
+                                        : " filled kept, outlined dropped");
+  if (panel.show_curves) {
+    drawCurves(state, joint);
+  } else {
+    drawBars(state, joint);
+  }
   ImGui::EndChild();
   ImGui::End();
 }
