@@ -377,6 +377,9 @@ int runEditor(const EditorOptions& options) {
     EditorState state;
     FilesPanelState files_panel;
     SpectrumPanelState spectrum_panel;
+    StylePanelState style_panel;
+    int right_tab = 0;                // Spectrum or Style
+    bool style_shot_pending = false;  // --panel-shots: the Style tab's picture is next
     OrbitCamera camera;
     ViewportDrag drag;
     FrameTimes frame_times;
@@ -472,7 +475,12 @@ int runEditor(const EditorOptions& options) {
       place(layout.timeline);
       drawTimelinePanel(state);
       place(layout.spectrum);
-      drawSpectrumPanel(state, spectrum_panel);
+      if (right_tab == 0) {
+        drawSpectrumPanel(state, spectrum_panel, right_tab);
+      } else {
+        drawStylePanel(state, style_panel, right_tab);
+      }
+      applyEdits(state);  // undo, redo and project loads change the edits too
       pollEvolution(state);
       place(layout.evolve);
       drawEvolvePanel(state);
@@ -555,7 +563,21 @@ int runEditor(const EditorOptions& options) {
       const bool done = options.bench
                             ? bench.phase == BenchPhase::kSearching && frame >= options.frames
                             : headless && frame >= options.frames;
-      if (done) {
+      if (style_shot_pending) {
+        // The Style tab, drawn this frame in the Spectrum panel's place.
+        const Rect& r = layout.spectrum;
+        const std::string path = (std::filesystem::path(options.panel_dir) / "style.png").string();
+        if (Status status = saveFramebufferRegionPng(path, fb_w, fb_h,
+                                                     static_cast<int>(std::lround(r.pos.x * sx)),
+                                                     static_cast<int>(std::lround(r.pos.y * sy)),
+                                                     static_cast<int>(std::lround(r.size.x * sx)),
+                                                     static_cast<int>(std::lround(r.size.y * sy)));
+            !status.ok()) {
+          std::cerr << "sinew edit: " << status.message() << '\n';
+          exit_code = 1;
+        }
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+      } else if (done) {
         if (options.bench) {
           const double median = frame_times.percentile(0.5), p95 = frame_times.percentile(0.95);
           std::printf(
@@ -609,8 +631,11 @@ int runEditor(const EditorOptions& options) {
             }
           }
           std::printf("sinew edit: wrote the panels to %s\n", options.panel_dir.c_str());
+          right_tab = 1;  // one more frame for the Style tab
+          style_shot_pending = true;
+        } else {
+          glfwSetWindowShouldClose(window, GLFW_TRUE);
         }
-        glfwSetWindowShouldClose(window, GLFW_TRUE);
       }
       glfwSwapBuffers(window);
 

@@ -36,7 +36,9 @@ namespace {
 void rebuildModel(const motion::Skeleton& skeleton, const motion::Clip& clip,
                   AnalysisState& analysis) {
   const spectral::MotionSpectrum& spectrum = analysis.spectrum;
-  analysis.target = spectral::targetFromSpectrum(spectrum, analysis.joint_k, clip.name);
+  analysis.model = spectral::targetFromSpectrum(spectrum, analysis.joint_k, clip.name);
+  analysis.target = analysis.model;  // the edits go on top (applyEdits)
+  analysis.applied = {};
   const motion::Clip original = spectral::windowFrames(clip, spectrum);
   const motion::Clip model = spectral::reconstruct(skeleton, spectrum, analysis.joint_k);
   analysis.errors =
@@ -96,6 +98,10 @@ bool openFile(EditorState& state, const std::filesystem::path& path, const std::
   state.evolution.reported_generation = 0;
   state.asset = std::move(asset);
   state.file_path = path;
+  // Edits and body overrides name joints of the old rig; a project opened next brings its own.
+  state.edits = {};
+  state.style_cache.clear();
+  state.evolution.settings.body = {};
   state.rig_path.clear();
   state.target_path.clear();
   state.evolution.export_dir = (path.parent_path() / (path.stem().string() + "_evolved")).string();
@@ -129,6 +135,7 @@ void chooseClip(EditorState& state, int clip_index) {
   rebuildModel(skeleton, *clip, analysis);
   state.selected_joint = mostActiveJoint(analysis.spectrum);
   state.analysis = std::move(analysis);
+  applyEdits(state);
   char line[160];
   std::snprintf(line, sizeof line,
                 "'%s': %d frames at %.0f fps, stride %.3f s, model error %.2f deg RMS",
@@ -144,6 +151,7 @@ void setJointK(EditorState& state, std::vector<int> joint_k) {
   joint_k.resize(static_cast<size_t>(state.asset->skeleton.jointCount()), 0);
   state.analysis->joint_k = std::move(joint_k);
   rebuildModel(state.asset->skeleton, *clip, *state.analysis);
+  applyEdits(state);
 }
 
 const physics::BodyPlan* bodyPlan(EditorState& state) {

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "sinew/physics/body_plan.h"
 #include "sinew/spectral/analysis.h"
 #include "sinew/spectral/importance.h"
+#include "sinew/spectral/style.h"
 #include "sinew/spectral/target_motion.h"
 
 namespace sinew::editor {
@@ -62,7 +65,10 @@ struct ViewToggles {
 struct AnalysisState {
   spectral::MotionSpectrum spectrum;
   std::vector<int> joint_k;               // (joints) harmonics kept, 0..kMaxK
-  spectral::TargetMotion target;          // the model with joint_k, continuous in time
+  spectral::TargetMotion model;           // the model with joint_k, continuous in time
+  spectral::TargetMotion target;          // the model with the edits (band gains, styles,
+                                          // secondary motion): what is drawn, searched, exported
+  app::MotionEdits applied;               // the edits `target` has
   std::vector<spectral::JointError> errors;  // (joints) error of the model with joint_k
   spectral::JointError total;
   // Joint importance (the Spectrum panel's ranking), computed when first asked for; cleared
@@ -103,6 +109,9 @@ struct EditorState {
   bool frame_requested = false;           // the camera should frame the character next frame
   EvolutionState evolution;               // the search over the loaded rig, if one ran
   ExportSettings exporting;
+  app::MotionEdits edits;  // the Style panel's edits of the model (a project setting)
+  // Styles measured from their clip pairs, by "neutral|styled": measuring analyses two clips.
+  std::map<std::string, std::shared_ptr<const Result<spectral::StyleVector>>> style_cache;
   // The body plan of the loaded clip with the project's body overrides (the Body panel); built
   // on demand by bodyPlan() and rebuilt when the file, clip or overrides change.
   struct BodyPlanCache {
@@ -136,6 +145,19 @@ const physics::BodyPlan* bodyPlan(EditorState& state);
 void setBodyMass(EditorState& state, const std::string& link, double kg);
 void clearBodyMass(EditorState& state, const std::string& link);
 void setBodyWelded(EditorState& state, const std::string& link, bool welded);
+
+// Makes analysis->target the model with state.edits applied, when the edits or the model changed
+// since (a cheap check; call it each frame). A style or source that cannot be applied is logged
+// and left out. Returns whether it re-derived the target.
+bool applyEdits(EditorState& state);
+// The style of a pair, measured on first use (two clips analysed) and then cached.
+const Result<spectral::StyleVector>& styleOf(EditorState& state, const app::StylePair& pair);
+// Adds a style pair at weight 1 after measuring it; the log says why not when it cannot.
+bool addStyle(EditorState& state, const std::string& neutral, const std::string& styled,
+              const std::string& label = "");
+// How close the open clip is to each style pair's styled clip (and to the first pair's neutral,
+// labelled "neutral"): spectral::scoreStyle.
+Result<spectral::StyleScores> measureClipStyle(EditorState& state);
 
 // Writes what the Export panel chose; the log names every file written (or why not).
 bool exportChosen(EditorState& state);

@@ -87,6 +87,20 @@ std::string describeChange(const app::Project& before, const app::Project& after
   if (before.harmonics != after.harmonics)
     changes.push_back("K of most joints " + std::to_string(before.harmonics) + " -> " +
                       std::to_string(after.harmonics));
+  if (before.edits.band_gains != after.edits.band_gains) changes.push_back("band gains");
+  if (before.edits.styles != after.edits.styles) {
+    if (before.edits.styles.size() != after.edits.styles.size()) {
+      changes.push_back(after.edits.styles.size() > before.edits.styles.size() ? "style added"
+                                                                               : "style removed");
+    } else {
+      for (size_t i = 0; i < after.edits.styles.size(); ++i) {
+        if (before.edits.styles[i].weight != after.edits.styles[i].weight)
+          changes.push_back("style " + after.edits.styles[i].label + " weight " +
+                            number(after.edits.styles[i].weight));
+      }
+    }
+  }
+  if (before.edits.secondary != after.edits.secondary) changes.push_back("secondary motion");
   if (before.terrain != after.terrain) changes.push_back("terrain " + after.terrain);
   if (before.window_s != after.window_s)
     changes.push_back("window " + number(after.window_s) + " s");

@@ -51,6 +51,7 @@ app::Project captureProject(const EditorState& state) {
       }
     }
   }
+  project.edits = state.edits;
   const EvolutionSettings& e = state.evolution.settings;
   project.terrain = e.terrain;
   project.window_s = e.window_s;
@@ -106,6 +107,8 @@ bool applyProject(EditorState& state, const app::Project& project) {
     if (joint_k != state.analysis->joint_k) setJointK(state, std::move(joint_k));
   }
 
+  state.edits = project.edits;
+  applyEdits(state);
   EvolutionSettings& e = state.evolution.settings;
   const bool weights_changed = !(e.weights == project.search.weights);
   e.terrain = project.terrain;

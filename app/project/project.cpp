@@ -11,6 +11,9 @@ namespace {
 
 using nlohmann::json;
 
+constexpr const char* kBandNames[kBandCount] = {"gait", "style", "detail"};
+constexpr const char* kGroupNames[kGroupCount] = {"legs", "arms", "spine", "head"};
+
 Result<double> parseNumber(const std::string& text, const std::string& context) {
   try {
     size_t used = 0;
@@ -127,6 +130,71 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
       project.joint_k[joint] = k.get<int>();
     }
   }
+  if (document.contains("band_gains")) {
+    const json& bands = document.at("band_gains");
+    if (!bands.is_object()) return Status::error(where + "band_gains: expected an object");
+    for (const auto& [band, groups] : bands.items()) {
+      int b = -1;
+      for (int i = 0; i < kBandCount; ++i)
+        if (band == kBandNames[i]) b = i;
+      if (b < 0)
+        return Status::error(where + "band_gains: unknown band '" + band +
+                             "' (gait, style, detail)");
+      if (!groups.is_object())
+        return Status::error(where + "band_gains." + band + ": expected an object");
+      for (const auto& [group, gain] : groups.items()) {
+        int g = -1;
+        for (int i = 0; i < kGroupCount; ++i)
+          if (group == kGroupNames[i]) g = i;
+        if (g < 0)
+          return Status::error(where + "band_gains." + band + ": unknown group '" + group +
+                               "' (legs, arms, spine, head)");
+        if (!gain.is_number() || gain.get<double>() < 0.0 || gain.get<double>() > 10.0)
+          return Status::error(where + "band_gains." + band + "." + group +
+                               ": expected a number 0..10");
+        project.edits.band_gains[static_cast<size_t>(b)][static_cast<size_t>(g)] =
+            gain.get<double>();
+      }
+    }
+  }
+  if (document.contains("styles")) {
+    const json& styles = document.at("styles");
+    if (!styles.is_array()) return Status::error(where + "styles: expected a list");
+    for (size_t i = 0; i < styles.size(); ++i) {
+      const std::string in = where + "styles[" + std::to_string(i) + "].";
+      if (!styles[i].is_object())
+        return Status::error(in.substr(0, in.size() - 1) + ": expected an object");
+      StylePair pair;
+      check(read(styles[i], "label", pair.label, in));
+      check(read(styles[i], "neutral", pair.neutral, in));
+      check(read(styles[i], "styled", pair.styled, in));
+      check(read(styles[i], "weight", pair.weight, in));
+      if (status.ok() && (pair.neutral.empty() || pair.styled.empty()))
+        return Status::error(in + "neutral/styled: both clips are needed");
+      project.edits.styles.push_back(pair);
+    }
+  }
+  if (document.contains("secondary")) {
+    const json& secondary = document.at("secondary");
+    if (!secondary.is_array()) return Status::error(where + "secondary: expected a list");
+    for (size_t i = 0; i < secondary.size(); ++i) {
+      const std::string in = where + "secondary[" + std::to_string(i) + "].";
+      if (!secondary[i].is_object())
+        return Status::error(in.substr(0, in.size() - 1) + ": expected an object");
+      SecondaryMotion source;
+      std::string kind = "periodic";
+      check(read(secondary[i], "joint", source.joint, in));
+      check(read(secondary[i], "axis", source.axis, in));
+      check(read(secondary[i], "kind", kind, in));
+      check(read(secondary[i], "frequency_hz", source.frequency_hz, in));
+      check(read(secondary[i], "amplitude_deg", source.amplitude_deg, in));
+      check(read(secondary[i], "seed", source.seed, in));
+      if (kind != "periodic" && kind != "noise")
+        return Status::error(in + "kind: expected \"periodic\" or \"noise\"");
+      source.noise = kind == "noise";
+      project.edits.secondary.push_back(source);
+    }
+  }
   if (document.contains("body")) {
     const json& body = document.at("body");
     if (!body.is_object()) return Status::error(where + "body: expected an object");
@@ -171,6 +239,10 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   resolve(project.rig);
   resolve(project.clip);
   resolve(project.target);
+  for (StylePair& pair : project.edits.styles) {
+    resolve(pair.neutral);
+    resolve(pair.styled);
+  }
   if (project.rig.empty()) return Status::error(where + "rig: empty (the rig file)");
   if (Status valid = validateProject(project); !valid.ok())
     return Status::error(where + valid.message());
@@ -205,6 +277,21 @@ Status validateProject(const Project& project) {
                          "\"");
   if (Status w = s.weights.validate(); !w.ok())
     return Status::error("search.weights: " + w.message());
+  for (size_t i = 0; i < project.edits.styles.size(); ++i) {
+    const StylePair& pair = project.edits.styles[i];
+    if (!(pair.weight >= -1.0 && pair.weight <= 2.0))
+      return Status::error("styles[" + std::to_string(i) + "].weight: must be -1..2");
+  }
+  for (size_t i = 0; i < project.edits.secondary.size(); ++i) {
+    const SecondaryMotion& m = project.edits.secondary[i];
+    const std::string in = "secondary[" + std::to_string(i) + "].";
+    if (m.joint.empty()) return Status::error(in + "joint: missing");
+    if (m.axis < 0 || m.axis > 2) return Status::error(in + "axis: must be 0, 1 or 2");
+    if (!(m.frequency_hz > 0.0 && m.frequency_hz <= 30.0))
+      return Status::error(in + "frequency_hz: must be in (0, 30]");
+    if (!(m.amplitude_deg >= 0.0 && m.amplitude_deg <= 30.0))
+      return Status::error(in + "amplitude_deg: must be 0..30");
+  }
   if (!(project.view.speed >= 0.1 && project.view.speed <= 4.0))
     return Status::error("view.speed: must be 0.1..4");
   return Status();
@@ -220,6 +307,39 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
   if (!project.target.empty()) out["target"] = relativeTo(project.target, base);
   out["harmonics"] = project.harmonics;
   if (!project.joint_k.empty()) out["joint_harmonics"] = project.joint_k;
+  const MotionEdits& edits = project.edits;
+  if (edits.band_gains != MotionEdits().band_gains) {
+    json bands = json::object();
+    for (int b = 0; b < kBandCount; ++b) {
+      for (int g = 0; g < kGroupCount; ++g) {
+        bands[kBandNames[b]][kGroupNames[g]] =
+            edits.band_gains[static_cast<size_t>(b)][static_cast<size_t>(g)];
+      }
+    }
+    out["band_gains"] = bands;
+  }
+  if (!edits.styles.empty()) {
+    json styles = json::array();
+    for (const StylePair& pair : edits.styles) {
+      styles.push_back({{"label", pair.label},
+                        {"neutral", relativeTo(pair.neutral, base)},
+                        {"styled", relativeTo(pair.styled, base)},
+                        {"weight", pair.weight}});
+    }
+    out["styles"] = styles;
+  }
+  if (!edits.secondary.empty()) {
+    json secondary = json::array();
+    for (const SecondaryMotion& m : edits.secondary) {
+      secondary.push_back({{"joint", m.joint},
+                           {"axis", m.axis},
+                           {"kind", m.noise ? "noise" : "periodic"},
+                           {"frequency_hz", m.frequency_hz},
+                           {"amplitude_deg", m.amplitude_deg},
+                           {"seed", m.seed}});
+    }
+    out["secondary"] = secondary;
+  }
   out["terrain"] = project.terrain;
   out["window_s"] = project.window_s;
   out["pushes"] = project.pushes;

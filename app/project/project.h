@@ -7,6 +7,7 @@
 // load. Paths inside are relative to the project file. See docs/file_formats.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -41,6 +42,40 @@ struct SearchSettings {
   bool operator==(const SearchSettings&) const = default;
 };
 
+// A style measured from a neutral and a styled clip of the rig's skeleton, applied at a weight
+// (0 changes nothing, 1 gives the styled clip's character, 2 exaggerates, -1 removes).
+struct StylePair {
+  std::string label;    // "tired"; default: the styled file's stem
+  std::string neutral;  // clip files (absolute once loaded)
+  std::string styled;
+  double weight = 0.0;  // -1..2
+  bool operator==(const StylePair&) const = default;
+};
+
+// A secondary motion source (breathing, sway): a sinusoid or band-limited noise on one axis of a
+// joint's rotation, deterministic by seed.
+struct SecondaryMotion {
+  std::string joint;
+  int axis = 0;        // 0 X, 1 Y, 2 Z
+  bool noise = false;  // band-limited noise instead of a sinusoid
+  double frequency_hz = 0.25;
+  double amplitude_deg = 1.0;
+  std::uint64_t seed = 1;
+  bool operator==(const SecondaryMotion&) const = default;
+};
+
+// Edits of the harmonic model, applied in this order: band gains, styles, secondary motion.
+inline constexpr int kBandCount = 3;   // gait (1-2), style (3-5), detail (6+)
+inline constexpr int kGroupCount = 4;  // legs, arms, spine, head
+struct MotionEdits {
+  std::array<std::array<double, kGroupCount>, kBandCount> band_gains{
+      {{1.0, 1.0, 1.0, 1.0}, {1.0, 1.0, 1.0, 1.0}, {1.0, 1.0, 1.0, 1.0}}};
+  std::vector<StylePair> styles;
+  std::vector<SecondaryMotion> secondary;
+  bool operator==(const MotionEdits&) const = default;
+  bool empty() const { return *this == MotionEdits(); }
+};
+
 // What the editor shows and how it plays.
 struct ViewSettings {
   double speed = 1.0;  // playback rate, 0.1..4
@@ -64,6 +99,7 @@ struct Project {
   // The harmonic model: K for every joint, then per-joint overrides by joint name.
   int harmonics = 5;
   std::map<std::string, int> joint_k;
+  MotionEdits edits;  // band gains, styles, secondary motion
   // Physics.
   std::string terrain = "flat";     // flat | slope:DEG | steps:H,D | rough:A,SEED
   double window_s = 10.0;           // seconds simulated per evaluation

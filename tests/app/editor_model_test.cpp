@@ -1,6 +1,7 @@
 // The editor's command and state model without a window: projects (load, save, round trip, bad
 // files), undo and redo of settings, unsaved changes, the recovery file and the preferences.
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -61,6 +62,10 @@ TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
   p.search.seed = 42;
   p.search.weights.fall = 3.0;
   p.search.weights.energy = 0.01;
+  p.edits.band_gains[2][1] = 0.5;
+  p.edits.styles.push_back({"tired", (test::sourceDir() / "assets" / "a.bvh").string(),
+                            (dir.path() / "b.bvh").string(), 0.75});
+  p.edits.secondary.push_back({"Chest", 0, true, 0.3, 2.0, 7});
   p.view.speed = 0.5;
   p.view.loop = false;
   p.view.show_grid = false;
@@ -459,6 +464,61 @@ TEST_F(EditorModelTest, AutoKMeetsItsToleranceWithFewerCoefficientsAndTheRanking
   };
   EXPECT_GT(cost("LeftUpLeg"), cost("Head"));
   EXPECT_EQ(editor::rankJoints(state), report);  // cached
+}
+
+TEST_F(EditorModelTest, BandGainsEditTheModelAndUndoRestoresIt) {
+  const spectral::TargetMotion model = state.analysis->model;
+  EXPECT_LT(spectral::harmonicDistance(state.analysis->target, model), 1e-12);  // no edits
+  for (int g = 0; g < app::kGroupCount; ++g)
+    state.edits.band_gains[2][static_cast<size_t>(g)] = 0.0;
+  editor::recordHistory(state);
+  ASSERT_TRUE(editor::applyEdits(state));
+  double detail = 0.0, gait = 0.0, gait_model = 0.0;
+  for (size_t c = 0; c < state.analysis->target.channels.size(); ++c) {
+    for (const spectral::Harmonic& h : state.analysis->target.channels[c].terms) {
+      if (h.n >= 6) detail += h.amplitude;
+      if (h.n <= 2) gait += h.amplitude;
+    }
+    for (const spectral::Harmonic& h : model.channels[c].terms)
+      if (h.n <= 2) gait_model += h.amplitude;
+  }
+  EXPECT_EQ(detail, 0.0);
+  EXPECT_NEAR(gait, gait_model, 1e-12);
+  ASSERT_TRUE(editor::undo(state));
+  editor::applyEdits(state);
+  EXPECT_LT(spectral::harmonicDistance(state.analysis->target, model), 1e-12);
+}
+
+TEST(EditorStyleTest, TheTiredStyleSlowsTheNormalWalkAndWeightZeroChangesNothing) {
+  SINEW_REQUIRE_SHARED_DATA();
+  const auto bvh = test::sharedData() / "bvh";
+  editor::EditorState state;
+  ASSERT_TRUE(editor::openAny(state, bvh / "bandai_dataset-1_walk_normal_001.bvh"));
+  const spectral::TargetMotion model = state.analysis->model;
+  ASSERT_TRUE(editor::addStyle(state, (bvh / "bandai_dataset-1_walk_normal_001.bvh").string(),
+                               (bvh / "bandai_dataset-1_walk_tired_001.bvh").string()));
+  ASSERT_EQ(state.edits.styles.size(), 1u);
+  EXPECT_EQ(state.edits.styles[0].label, "bandai_dataset-1_walk_tired_001");
+  // The tired walk is slower: its stride is the model's stretched by the pair's tempo ratio
+  // (the strides of the two clips: about 1.09 s and 1.22 s).
+  const Result<spectral::StyleVector>& style = editor::styleOf(state, state.edits.styles[0]);
+  ASSERT_TRUE(style.ok());
+  const double tempo = std::exp(style.value().log_tempo);  // omega_styled / omega_neutral
+  EXPECT_LT(tempo, 0.92);
+  EXPECT_NEAR(model.period(), 1.075, 0.01);
+  EXPECT_NEAR(state.analysis->target.period(), model.period() / tempo, 1e-6);
+  EXPECT_GT(spectral::poseDistanceDeg(state.analysis->target, model), 1.0);
+  state.edits.styles[0].weight = 0.0;
+  editor::applyEdits(state);
+  EXPECT_LT(spectral::poseDistanceDeg(state.analysis->target, model), 1e-9);
+  // A pair from another skeleton is refused and named.
+  EXPECT_FALSE(editor::addStyle(state, (bvh / "cmu_131_01.bvh").string(),
+                                (bvh / "bandai_dataset-1_walk_tired_001.bvh").string()));
+  EXPECT_NE(
+      state.log.lines().back().text.find("cmu_131_01.bvh: its skeleton is not the open clip's"),
+      std::string::npos)
+      << state.log.lines().back().text;
+  EXPECT_EQ(state.edits.styles.size(), 1u);
 }
 
 TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {

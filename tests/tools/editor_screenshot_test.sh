@@ -139,10 +139,10 @@ PY
     grep -q "the clip alone: *median" "$out" || { echo "FAIL: no idle frame time"; exit 1; }
     grep -q "16 characters while the search runs: *median" "$out" || { echo "FAIL: no search frame time"; exit 1; }
     grep -q "ratio (search / alone)" "$out" || { echo "FAIL: no ratio"; exit 1; }
-    for panel in files body log timeline spectrum evolve export viewport; do
+    for panel in files body log timeline spectrum style evolve export viewport; do
       test -s "$work/panels/$panel.png" || { echo "FAIL: no $panel.png"; exit 1; }
     done
-    echo "PASS: frame times printed, 8 panels saved"
+    echo "PASS: frame times printed, 9 panels saved"
     ;;
   *)
     echo "unknown mode $mode"; exit 2 ;;

@@ -26,9 +26,18 @@ struct SpectrumPanelState {
   bool show_ranking = false;       // the joints ranked by importance instead of the joint list
 };
 
+struct StylePanelState {
+  std::string neutral, styled, label;  // the "add a style" fields
+  std::string measured;                // the last style measurement, as shown
+};
+
+// The top-right region holds Spectrum or Style: a row of two tabs at the top of each.
+void drawRightTabs(int& tab);
+
 void drawFilesPanel(EditorState& state, FilesPanelState& panel);
 void drawTimelinePanel(EditorState& state);
-void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel);
+void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab);
+void drawStylePanel(EditorState& state, StylePanelState& panel, int& tab);
 void drawLogPanel(EditorState& state);
 void drawEvolvePanel(EditorState& state);
 void drawBodyPanel(EditorState& state);

@@ -203,11 +203,12 @@ void drawRanking(EditorState& state) {
 
 }  // namespace
 
-void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel) {
+void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) {
   if (!ImGui::Begin("Spectrum", nullptr, ImGuiWindowFlags_NoCollapse)) {
     ImGui::End();
     return;
   }
+  drawRightTabs(tab);
   if (!state.analysis || state.clip() == nullptr) {
     ImGui::TextDisabled(state.clip() == nullptr ? "Open a clip to see its spectrum."
                                                 : "This clip could not be analysed (see Log).");
