@@ -23,7 +23,9 @@ namespace sinew::app {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-extern "C" void onInterrupt(int) { g_interrupted = true; }
+extern "C" void onInterrupt(int) {
+  g_interrupted = true;
+}
 
 struct EvolveArgs {
   std::string project;
@@ -48,6 +50,7 @@ struct EvolveArgs {
   std::vector<std::string> weights;
   search::FitnessWeights project_weights;  // the project's; --weights changes them term by term
   std::map<std::string, int> joint_k;      // the project's K per joint, by name
+  MotionEdits edits;                       // the project's band gains, styles, secondary motion
   ImportFlags import;
   BodyFlags body;
 };
@@ -64,7 +67,8 @@ std::string historyCsv(const search::Snapshot& snap) {
   for (const search::GenerationRecord& r : snap.history) {
     csv << r.generation << ',' << r.evaluations << ',' << r.wall_s << ',' << r.total.best << ','
         << r.total.mean << ',' << r.total.worst;
-    for (const search::TermStats& t : r.terms) csv << ',' << t.best << ',' << t.mean << ',' << t.worst;
+    for (const search::TermStats& t : r.terms)
+      csv << ',' << t.best << ',' << t.mean << ',' << t.worst;
     csv << ',' << r.best_survived_s << ',' << r.best_distance_m << '\n';
   }
   return csv.str();
@@ -102,6 +106,13 @@ int runEvolve(EvolveArgs args) {
       args.body.fixed = problem.at("fixed").get<std::vector<std::string>>();
       args.body.hinge_limits = problem.at("hinge_limits").get<std::vector<std::string>>();
       args.no_prior = problem.at("no_prior").get<bool>();
+      if (problem.contains("project")) {
+        Result<Project> fragment =
+            parseProject(problem.at("project").dump(), {}, args.resume + ": problem.project");
+        if (!fragment.ok()) return fail(fragment.message());
+        args.joint_k = fragment.value().joint_k;
+        args.edits = fragment.value().edits;
+      }
     } catch (const nlohmann::json::exception& e) {
       return fail(args.resume + ": not a checkpoint of sinew evolve: " + e.what());
     }
@@ -110,6 +121,23 @@ int runEvolve(EvolveArgs args) {
                                               args.harmonics, args.import, args.body, args.joint_k);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
+  if (!args.edits.empty() && args.target_path.empty()) {
+    // The project's edits of the model, as the editor applies them.
+    std::vector<spectral::StyleVector> measured;
+    measured.reserve(args.edits.styles.size());
+    for (const StylePair& pair : args.edits.styles) {
+      Result<spectral::StyleVector> style = measureStylePair(pair, rig.asset.skeleton);
+      if (!style.ok()) return fail("style '" + pair.label + "': " + style.message());
+      measured.push_back(std::move(style).value());
+    }
+    std::vector<const spectral::StyleVector*> styles;
+    for (const spectral::StyleVector& style : measured) styles.push_back(&style);
+    Result<spectral::TargetMotion> edited =
+        applyMotionEdits(rig.target, rig.asset.skeleton, args.edits, styles);
+    if (!edited.ok()) return fail(edited.message());
+    rig.target = std::move(edited).value();
+    rig.what += " with the project's edits";
+  }
 
   Result<physics::SimulationSettings> simulation =
       simulationSettings(args.window, args.terrain, args.pushes);
@@ -129,15 +157,15 @@ int runEvolve(EvolveArgs args) {
       value = -1.0;
     }
     if (term < 0 || !(value >= 0.0))
-      return fail("--weights '" + text + "': expected TERM=VALUE >= 0, TERM one of fall, tracking, "
+      return fail("--weights '" + text +
+                  "': expected TERM=VALUE >= 0, TERM one of fall, tracking, "
                   "speed, heading, placement, upright, energy");
     search::fitnessWeight(weights, term) = value;
   }
   search::GenomeSettings genome;
   genome.no_prior = args.no_prior;
-  Result<search::Problem> problem =
-      search::Problem::create(rig.plan, rig.asset.skeleton, rig.target, genome, simulation.value(),
-                              weights);
+  Result<search::Problem> problem = search::Problem::create(
+      rig.plan, rig.asset.skeleton, rig.target, genome, simulation.value(), weights);
   if (!problem.ok()) return fail(problem.message());
 
   std::error_code ec;
@@ -152,8 +180,9 @@ int runEvolve(EvolveArgs args) {
   settings.minutes = args.minutes;
   if (settings.generations == 0 && settings.minutes == 0.0) settings.generations = 40;
   if (!args.resume.empty() && (args.population > 0 || args.optimizer != "cmaes"))
-    return fail("--resume continues the search as it was: --population and --optimizer come "
-                "from the checkpoint");
+    return fail(
+        "--resume continues the search as it was: --population and --optimizer come "
+        "from the checkpoint");
   settings.threads = args.threads;
   settings.seed = args.seed;
   if (args.sigma > 0.0) settings.initial_sigma = args.sigma;
@@ -180,19 +209,21 @@ int runEvolve(EvolveArgs args) {
   const int threads = used.threads > 0 ? used.threads : search::hardwareThreads();
   char budget[64];
   if (used.minutes > 0.0 && used.generations > 0)
-    std::snprintf(budget, sizeof budget, "%d generations or %.1f min", used.generations, used.minutes);
+    std::snprintf(budget, sizeof budget, "%d generations or %.1f min", used.generations,
+                  used.minutes);
   else if (used.minutes > 0.0)
     std::snprintf(budget, sizeof budget, "%.1f min", used.minutes);
   else
     std::snprintf(budget, sizeof budget, "%d generations", used.generations);
-  std::printf("evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.1f "
-              "s, seed %llu%s\n",
-              rig.what.c_str(), session.problem().layout.size(),
-              used.optimizer == "cmaes" ? "CMA-ES" : "genetic algorithm",
-              args.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
-              session.population(), budget, threads, threads == 1 ? "" : "s",
-              session.problem().simulation.seconds, static_cast<unsigned long long>(used.seed),
-              args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
+  std::printf(
+      "evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.1f "
+      "s, seed %llu%s\n",
+      rig.what.c_str(), session.problem().layout.size(),
+      used.optimizer == "cmaes" ? "CMA-ES" : "genetic algorithm",
+      args.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
+      session.population(), budget, threads, threads == 1 ? "" : "s",
+      session.problem().simulation.seconds, static_cast<unsigned long long>(used.seed),
+      args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
   std::fflush(stdout);
 
   g_interrupted = false;
@@ -216,11 +247,13 @@ int runEvolve(EvolveArgs args) {
       if (used.generations > 0) {
         const double per = r.wall_s / std::max(1, r.generation);
         char eta[64];
-        std::snprintf(eta, sizeof eta, ", %.0f s left", per * std::max(0, used.generations - r.generation));
+        std::snprintf(eta, sizeof eta, ", %.0f s left",
+                      per * std::max(0, used.generations - r.generation));
         left = eta;
       } else if (used.minutes > 0.0) {
         char eta[64];
-        std::snprintf(eta, sizeof eta, ", %.0f s left", std::max(0.0, used.minutes * 60.0 - r.wall_s));
+        std::snprintf(eta, sizeof eta, ", %.0f s left",
+                      std::max(0.0, used.minutes * 60.0 - r.wall_s));
         left = eta;
       }
       std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s\n", r.generation,
@@ -235,12 +268,27 @@ int runEvolve(EvolveArgs args) {
 
   const auto snap = session.snapshot();
   nlohmann::json saved_state = session.checkpoint();
-  saved_state["problem"] = {{"rig", args.rig},           {"clip", args.clip},
-                            {"target", args.target_path}, {"animation", args.animation},
-                            {"harmonics", args.harmonics}, {"window_s", args.window},
-                            {"terrain", args.terrain},     {"no_prior", args.no_prior},
-                            {"pushes", args.pushes},       {"masses", args.body.masses},
-                            {"fixed", args.body.fixed},    {"hinge_limits", args.body.hinge_limits}};
+  saved_state["problem"] = {{"rig", args.rig},
+                            {"clip", args.clip},
+                            {"target", args.target_path},
+                            {"animation", args.animation},
+                            {"harmonics", args.harmonics},
+                            {"window_s", args.window},
+                            {"terrain", args.terrain},
+                            {"no_prior", args.no_prior},
+                            {"pushes", args.pushes},
+                            {"masses", args.body.masses},
+                            {"fixed", args.body.fixed},
+                            {"hinge_limits", args.body.hinge_limits}};
+  {
+    // K per joint and the model's edits, as a project fragment (absolute paths).
+    Project fragment;
+    fragment.rig = args.rig;
+    fragment.harmonics = args.harmonics;
+    fragment.joint_k = args.joint_k;
+    fragment.edits = args.edits;
+    saved_state["problem"]["project"] = nlohmann::json::parse(projectJson(fragment, {}));
+  }
   Status saved = writeFileAtomically(out / "checkpoint.json", saved_state.dump() + "\n");
   if (!saved.ok()) return fail(saved.message());
   saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
@@ -273,18 +321,22 @@ int runEvolve(EvolveArgs args) {
 void addEvolveCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<EvolveArgs>();
   CLI::App* command = app.add_subcommand(
-      "evolve", "Evolve the rig's Fourier controller (seeded from the clip's DFT) until the "
-                "simulated motion keeps the style without falling");
+      "evolve",
+      "Evolve the rig's Fourier controller (seeded from the clip's DFT) until the "
+      "simulated motion keeps the style without falling");
   command->add_option("project", args->project,
                       "A project file (.sinew.json: rig, clip, window, terrain...); default: the "
                       "bundled default project, the walk the editor opens");
   command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf), instead of a project");
   command->add_option("--clip", args->clip, "The motion (same skeleton); default: the rig's own");
-  command->add_option("--target", args->target_path,
-                      "Start from these coefficients (.json from sinew style) instead of the clip's");
+  command->add_option(
+      "--target", args->target_path,
+      "Start from these coefficients (.json from sinew style) instead of the clip's");
   command->add_option("--animation", args->animation, "Which glTF animation (by name)");
-  command->add_option("--population", args->population, "Individuals per generation (default: "
-                                                         "CMA-ES 4 + 3 ln n, GA 32)")
+  command
+      ->add_option("--population", args->population,
+                   "Individuals per generation (default: "
+                   "CMA-ES 4 + 3 ln n, GA 32)")
       ->check(CLI::Range(0, 10000));
   command->add_option("--generations", args->generations, "Generations (default 40)")
       ->check(CLI::Range(0, 1000000));
@@ -304,16 +356,18 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 64));
   command->add_option("--terrain", args->terrain,
                       "flat | slope:DEG | steps:HEIGHT,DEPTH | rough:AMPLITUDE,SEED");
-  command->add_option("--sigma", args->sigma,
-                      "Initial step size in normalised units (default 0.02; the GA's mutation "
-                      "scale)")
+  command
+      ->add_option("--sigma", args->sigma,
+                   "Initial step size in normalised units (default 0.02; the GA's mutation "
+                   "scale)")
       ->check(CLI::Range(0.0, 1.0));
   command->add_option("--push", args->pushes,
                       "Robustness: every evaluation takes this push, TIME,X,Y,Z[,LINK] (seconds, "
                       "N s); repeatable");
-  command->add_option("--weights", args->weights,
-                      "Fitness weights TERM=VALUE (fall, tracking, speed, heading, placement, "
-                      "upright, energy); repeatable")
+  command
+      ->add_option("--weights", args->weights,
+                   "Fitness weights TERM=VALUE (fall, tracking, speed, heading, placement, "
+                   "upright, energy); repeatable")
       ->delimiter(',');
   command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
   command->add_option("--out", args->out, "Output folder")->required();
@@ -346,6 +400,7 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       if (command->count("--no-prior") == 0) args->no_prior = p.search.no_prior;
       args->project_weights = p.search.weights;
       args->joint_k = p.joint_k;
+      args->edits = p.edits;
       args->pushes.insert(args->pushes.end(), p.pushes.begin(), p.pushes.end());
       args->body.masses.insert(args->body.masses.end(), p.body.masses.begin(), p.body.masses.end());
       args->body.fixed.insert(args->body.fixed.end(), p.body.fixed.begin(), p.body.fixed.end());
@@ -353,8 +408,9 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
                                      p.body.hinge_limits.end());
     }
     if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))
-      exit_code = fail("--resume continues the search as it was: the rig, clip, window and "
-                       "terrain come from the checkpoint");
+      exit_code = fail(
+          "--resume continues the search as it was: the rig, clip, window and "
+          "terrain come from the checkpoint");
     else
       exit_code = runEvolve(*args);
   });

@@ -5,6 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/motion/asset.h"
+#include "sinew/spectral/analysis.h"
+#include "sinew/spectral/bands.h"
+#include "sinew/spectral/secondary.h"
 
 namespace sinew::app {
 namespace {
@@ -450,6 +454,78 @@ Result<physics::SimulationSettings> simulationSettings(double seconds, const std
     simulation.pushes.push_back(push.value());
   }
   return simulation;
+}
+
+Result<spectral::TargetMotion> styleTarget(const motion::Skeleton& skeleton,
+                                           const motion::Clip& clip, const std::string& name) {
+  constexpr int kStyleHarmonics = 10;  // as `sinew style` analyses its clips
+  spectral::AnalysisSettings settings;
+  settings.harmonics = kStyleHarmonics;
+  Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, clip, settings);
+  if (!spectrum.ok()) return Status::error(name + ": " + spectrum.message());
+  return spectral::targetFromSpectrum(spectrum.value(), {}, clip.name);
+}
+
+Result<spectral::TargetMotion> styleClipTarget(const std::string& path,
+                                               const motion::Skeleton& skeleton) {
+  Result<motion::MotionAsset> asset = motion::importMotion(path);
+  if (!asset.ok()) return asset.status();
+  if (asset.value().clips.empty()) return Status::error(path + ": no animation");
+  if (asset.value().skeleton.names != skeleton.names)
+    return Status::error(path + ": its skeleton is not the open clip's (the joints differ)");
+  return styleTarget(asset.value().skeleton, asset.value().clips.front(), path);
+}
+
+Result<spectral::StyleVector> measureStylePair(const StylePair& pair,
+                                               const motion::Skeleton& skeleton) {
+  Result<spectral::TargetMotion> neutral = styleClipTarget(pair.neutral, skeleton);
+  if (!neutral.ok()) return neutral.status();
+  Result<spectral::TargetMotion> styled = styleClipTarget(pair.styled, skeleton);
+  if (!styled.ok()) return styled.status();
+  return spectral::measureStyle(neutral.value(), styled.value(), pair.label);
+}
+
+Result<spectral::TargetMotion> applyMotionEdits(
+    const spectral::TargetMotion& model, const motion::Skeleton& skeleton, const MotionEdits& edits,
+    const std::vector<const spectral::StyleVector*>& styles) {
+  spectral::TargetMotion target = model;
+  if (edits.band_gains != MotionEdits().band_gains) {
+    spectral::BandGains gains;
+    for (size_t b = 0; b < gains.gains.size() && b < edits.band_gains.size(); ++b) {
+      for (size_t g = 0; g < gains.gains[b].size(); ++g) gains.gains[b][g] = edits.band_gains[b][g];
+    }
+    if (Status valid = gains.validate(); !valid.ok())
+      return Status::error("band_gains: " + valid.message());
+    target = spectral::applyBandGains(target, skeleton, gains);
+  }
+  std::vector<std::pair<const spectral::StyleVector*, double>> weighted;
+  for (size_t i = 0; i < edits.styles.size() && i < styles.size(); ++i) {
+    if (styles[i] != nullptr && edits.styles[i].weight != 0.0)
+      weighted.emplace_back(styles[i], edits.styles[i].weight);
+  }
+  if (!weighted.empty()) {
+    Result<spectral::TargetMotion> styled = spectral::applyStyles(target, weighted);
+    if (!styled.ok()) return Status::error("styles: " + styled.message());
+    target = std::move(styled).value();
+  }
+  if (!edits.secondary.empty()) {
+    spectral::SecondarySettings settings;
+    for (const SecondaryMotion& m : edits.secondary) {
+      spectral::SecondarySource source;
+      source.kind = m.noise ? spectral::SecondarySource::Kind::kNoise
+                            : spectral::SecondarySource::Kind::kPeriodic;
+      source.joint = m.joint;
+      source.axis = m.axis;
+      source.frequency_hz = m.frequency_hz;
+      source.amplitude_deg = m.amplitude_deg;
+      source.seed = m.seed;
+      settings.sources.push_back(source);
+    }
+    Result<spectral::TargetMotion> moved = spectral::addSecondaryMotion(target, skeleton, settings);
+    if (!moved.ok()) return Status::error("secondary: " + moved.message());
+    target = std::move(moved).value();
+  }
+  return target;
 }
 
 Result<physics::BodyPlanSettings> parseBodyOverrides(const BodyOverrides& body) {

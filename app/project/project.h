@@ -18,6 +18,8 @@
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
 #include "sinew/search/problem.h"
+#include "sinew/spectral/style.h"
+#include "sinew/spectral/target_motion.h"
 
 namespace sinew::app {
 
@@ -133,6 +135,23 @@ Result<physics::Push> parsePush(const std::string& text, const std::string& fiel
 Result<physics::SimulationSettings> simulationSettings(
     double seconds, const std::string& terrain, const std::vector<std::string>& pushes,
     const std::string& terrain_field = "--terrain", const std::string& push_field = "--push");
+// Style work: a clip analysed with enough harmonics for a style's detail (10 per joint); its
+// skeleton must be `skeleton`'s (same joint names), or the message says so, naming the file.
+Result<spectral::TargetMotion> styleClipTarget(const std::string& path,
+                                               const motion::Skeleton& skeleton);
+// The same for a clip already loaded (`name` starts messages).
+Result<spectral::TargetMotion> styleTarget(const motion::Skeleton& skeleton,
+                                           const motion::Clip& clip, const std::string& name);
+// The style of a pair: both clips analysed, then spectral::measureStyle.
+Result<spectral::StyleVector> measureStylePair(const StylePair& pair,
+                                               const motion::Skeleton& skeleton);
+// `model` with the edits applied in order (band gains, styles at their weights, secondary motion).
+// `styles` holds the measured style of each of edits.styles (nullptr: left out, as when its
+// measurement failed). The message names what could not be applied.
+Result<spectral::TargetMotion> applyMotionEdits(
+    const spectral::TargetMotion& model, const motion::Skeleton& skeleton, const MotionEdits& edits,
+    const std::vector<const spectral::StyleVector*>& styles);
+
 // The body plan's overrides; messages name the flag (--mass, --fixed, --hinge-limits).
 Result<physics::BodyPlanSettings> parseBodyOverrides(const BodyOverrides& body);
 

@@ -405,5 +405,28 @@ TEST(CliTest, EvolveTakesTheSearchSettingsOfAVersion2Project) {
   EXPECT_NE(refused.err.find("no joint called 'Tail'"), std::string::npos) << refused.err;
 }
 
+// The editor's edits of the model in a project (band gains, secondary motion) are evolved too,
+// and a resumed search keeps them.
+TEST(CliTest, EvolveAppliesTheProjectsEditsAndKeepsThemOnResume) {
+  test::TempDir dir;
+  const auto project = dir / "edited.sinew.json";
+  test::writeText(project, "{\"format\": \"sinew.project\", \"version\": 2, \"rig\": " +
+                               nlohmann::json((test::sourceDir() / "assets" / "biped_walk.bvh").string()).dump() +
+                               ", \"window_s\": 1, \"band_gains\": {\"detail\": {\"arms\": 0}}, "
+                               "\"secondary\": [{\"joint\": \"Chest\", \"frequency_hz\": 0.25, "
+                               "\"amplitude_deg\": 2}], \"search\": {\"population\": 4}}");
+  const test::CommandResult run = test::runSinew("evolve " + test::quote(project) +
+                                                 " --generations 1 --out " + test::quote(dir / "out"));
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  EXPECT_NE(run.out.find("with the project's edits"), std::string::npos) << run.out;
+  const nlohmann::json checkpoint = nlohmann::json::parse(test::readText(dir / "out" / "checkpoint.json"));
+  EXPECT_EQ(checkpoint["problem"]["project"]["band_gains"]["detail"]["arms"], 0.0);
+  const test::CommandResult resumed =
+      test::runSinew("evolve --resume " + test::quote(dir / "out" / "checkpoint.json") +
+                     " --generations 2 --out " + test::quote(dir / "out2"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err << resumed.out;
+  EXPECT_NE(resumed.out.find("with the project's edits"), std::string::npos) << resumed.out;
+}
+
 }  // namespace
 }  // namespace sinew
