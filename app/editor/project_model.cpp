@@ -206,26 +206,29 @@ void recordHistory(EditorState& state) {
   state.history.record(captureProject(state));
 }
 
-bool undo(EditorState& state) {
-  std::optional<History::Step> step = state.history.undo();
-  if (!step) {
-    state.log.info("undo: nothing to undo");
+namespace {
+
+// One step back (undo) or forward (redo) through the history, applied and logged.
+bool step(EditorState& state, bool forward) {
+  const char* verb = forward ? "redo" : "undo";
+  std::optional<History::Step> taken = forward ? state.history.redo() : state.history.undo();
+  if (!taken) {
+    state.log.info(std::string(verb) + ": nothing to " + verb);
     return false;
   }
-  applyProject(state, step->value);
-  state.log.info("undo: " + step->what);
+  applyProject(state, taken->value);
+  state.log.info(std::string(verb) + ": " + taken->what);
   return true;
 }
 
+}  // namespace
+
+bool undo(EditorState& state) {
+  return step(state, false);
+}
+
 bool redo(EditorState& state) {
-  std::optional<History::Step> step = state.history.redo();
-  if (!step) {
-    state.log.info("redo: nothing to redo");
-    return false;
-  }
-  applyProject(state, step->value);
-  state.log.info("redo: " + step->what);
-  return true;
+  return step(state, true);
 }
 
 Status writeRecovery(const EditorState& state, const std::filesystem::path& path) {

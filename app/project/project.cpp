@@ -161,44 +161,46 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
       }
     }
   }
-  if (document.contains("styles")) {
-    const json& styles = document.at("styles");
-    if (!styles.is_array()) return Status::error(where + "styles: expected a list");
-    for (size_t i = 0; i < styles.size(); ++i) {
-      const std::string in = where + "styles[" + std::to_string(i) + "].";
-      if (!styles[i].is_object())
-        return Status::error(in.substr(0, in.size() - 1) + ": expected an object");
-      StylePair pair;
-      check(read(styles[i], "label", pair.label, in));
-      check(read(styles[i], "neutral", pair.neutral, in));
-      check(read(styles[i], "styled", pair.styled, in));
-      check(read(styles[i], "weight", pair.weight, in));
-      if (status.ok() && (pair.neutral.empty() || pair.styled.empty()))
-        return Status::error(in + "neutral/styled: both clips are needed");
-      project.edits.styles.push_back(pair);
+  // A list of objects under `key`: `each` reads one, given its index and the message prefix.
+  auto objects = [&](const char* key, auto each) -> Status {
+    if (!document.contains(key)) return Status();
+    const json& list = document.at(key);
+    if (!list.is_array()) return Status::error(where + key + ": expected a list");
+    for (size_t i = 0; i < list.size(); ++i) {
+      const std::string at = where + key + "[" + std::to_string(i) + "]";
+      if (!list[i].is_object()) return Status::error(at + ": expected an object");
+      if (Status s = each(list[i], at + "."); !s.ok()) return s;
     }
-  }
-  if (document.contains("secondary")) {
-    const json& secondary = document.at("secondary");
-    if (!secondary.is_array()) return Status::error(where + "secondary: expected a list");
-    for (size_t i = 0; i < secondary.size(); ++i) {
-      const std::string in = where + "secondary[" + std::to_string(i) + "].";
-      if (!secondary[i].is_object())
-        return Status::error(in.substr(0, in.size() - 1) + ": expected an object");
-      SecondaryMotion source;
-      std::string kind = "periodic";
-      check(read(secondary[i], "joint", source.joint, in));
-      check(read(secondary[i], "axis", source.axis, in));
-      check(read(secondary[i], "kind", kind, in));
-      check(read(secondary[i], "frequency_hz", source.frequency_hz, in));
-      check(read(secondary[i], "amplitude_deg", source.amplitude_deg, in));
-      check(read(secondary[i], "seed", source.seed, in));
-      if (kind != "periodic" && kind != "noise")
-        return Status::error(in + "kind: expected \"periodic\" or \"noise\"");
-      source.noise = kind == "noise";
-      project.edits.secondary.push_back(source);
-    }
-  }
+    return Status();
+  };
+  Status lists = objects("styles", [&](const json& item, const std::string& in) {
+    StylePair pair;
+    check(read(item, "label", pair.label, in));
+    check(read(item, "neutral", pair.neutral, in));
+    check(read(item, "styled", pair.styled, in));
+    check(read(item, "weight", pair.weight, in));
+    if (status.ok() && (pair.neutral.empty() || pair.styled.empty()))
+      return Status::error(in + "neutral/styled: both clips are needed");
+    project.edits.styles.push_back(pair);
+    return Status();
+  });
+  if (!lists.ok()) return lists;
+  lists = objects("secondary", [&](const json& item, const std::string& in) {
+    SecondaryMotion source;
+    std::string kind = "periodic";
+    check(read(item, "joint", source.joint, in));
+    check(read(item, "axis", source.axis, in));
+    check(read(item, "kind", kind, in));
+    check(read(item, "frequency_hz", source.frequency_hz, in));
+    check(read(item, "amplitude_deg", source.amplitude_deg, in));
+    check(read(item, "seed", source.seed, in));
+    if (kind != "periodic" && kind != "noise")
+      return Status::error(in + "kind: expected \"periodic\" or \"noise\"");
+    source.noise = kind == "noise";
+    project.edits.secondary.push_back(source);
+    return Status();
+  });
+  if (!lists.ok()) return lists;
   if (document.contains("body")) {
     const json& body = document.at("body");
     if (!body.is_object()) return Status::error(where + "body: expected an object");

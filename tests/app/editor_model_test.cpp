@@ -106,6 +106,14 @@ TEST(ProjectFileTest, BadProjectsNameTheFileAndTheField) {
        "joint_harmonics.Head: expected a whole number"},
       {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "view": {"speed": 9}})",
        "view.speed: must be 0.1..4"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "styles": [{"neutral": "n.bvh"}]})",
+       "styles[0].neutral/styled: both clips are needed"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "styles": [{"neutral": "n.bvh", "styled": "s.bvh", "weight": 3}]})",
+       "styles[0].weight: must be -1..2"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "secondary": [{"joint": "Chest", "kind": "wobble"}]})",
+       "secondary[0].kind: expected"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "band_gains": {"gait": {"tail": 1}}})",
+       "band_gains.gait: unknown group 'tail'"},
       {R"({"format": "sinew.project", "version": 2, "rig": )", "not JSON"},
   };
   for (const Case& c : cases) {
