@@ -67,7 +67,9 @@ struct Link {
   // parent): the rotation vector v = log(ball_center^-1 q) stays in [ball_lower, ball_upper] per
   // axis. ball_center is the middle of the observed range (the clip's frames and the standing
   // pose) in joint coordinates; the bounds are the observed extremes of v about it plus the
-  // margin, radians, lower < upper (see ballRangeCoordinates). Without a clip: +-3 rad about q = 1.
+  // margin, radians, lower < upper (see ballRangeCoordinates). Without a clip (or for a joint the
+  // clip holds still, made ball by an override): +-3 rad about q = 1, which the limit never
+  // reaches (it acts below |v| = 0.9 pi): no limit in effect.
   glm::dquat ball_center{1.0, 0.0, 0.0, 0.0};
   glm::dvec3 ball_lower{-3.0};
   glm::dvec3 ball_upper{3.0};
