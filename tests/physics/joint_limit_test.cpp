@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -223,6 +224,24 @@ TEST(JointLimits, LimpBipedFoldsOnlyWithinItsRanges) {
     EXPECT_LT(ball * kDeg, run == 0 ? 10.0 : 2.0);
   }
   EXPECT_GT(ball_free * kDeg, 20.0);
+}
+
+// Limits at work keep runs bit-identical: the limp collapse above (every joint reaches its range)
+// twice.
+TEST(JointLimits, RunsWithLimitsAtWorkAreBitIdentical) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const LinkPose standing = standingPose(biped.plan, biped.asset.skeleton);
+  std::vector<glm::dmat4> transforms[2];
+  for (auto& out : transforms) {
+    std::unique_ptr<World> world = World::create(biped.plan, standing).value();
+    std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+    for (int s = 0; s < 720; ++s) world->step(zero);
+    out.resize(biped.plan.links.size());
+    world->linkTransforms(out);
+  }
+  EXPECT_EQ(0, std::memcmp(transforms[0].data(), transforms[1].data(),
+                           transforms[0].size() * sizeof(glm::dmat4)));
 }
 
 }  // namespace
