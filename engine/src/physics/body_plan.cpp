@@ -46,6 +46,26 @@ glm::dvec3 rotationVector(glm::dquat q) {
   return v * (2.0 * std::atan2(s, q.w) / s);
 }
 
+// Exponential map: the unit quaternion of a rotation vector, radians.
+glm::dquat fromRotationVector(const glm::dvec3& v) {
+  const double angle = glm::length(v);
+  if (angle < 1e-12) return glm::normalize(glm::dquat(1.0, 0.5 * v.x, 0.5 * v.y, 0.5 * v.z));
+  return glm::angleAxis(angle, v / angle);
+}
+
+// Per-axis extremes of the rotation vectors of `qs` about `center` (log(center^-1 q)).
+void rangeAbout(const glm::dquat& center, std::span<const glm::dquat> qs, glm::dvec3& lo,
+                glm::dvec3& hi) {
+  lo = glm::dvec3(std::numeric_limits<double>::max());
+  hi = glm::dvec3(-std::numeric_limits<double>::max());
+  const glm::dquat inverse = glm::inverse(center);
+  for (const glm::dquat& q : qs) {
+    const glm::dvec3 v = rotationVector(inverse * q);
+    lo = glm::min(lo, v);
+    hi = glm::max(hi, v);
+  }
+}
+
 // Hinge angle of q about a unit axis, radians in (-pi, pi].
 double hingeAngle(glm::dquat q, const glm::dvec3& axis) {
   q = positiveW(glm::normalize(q));
@@ -212,6 +232,17 @@ glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double an
   }
 }
 
+glm::dvec3 ballRangeCoordinates(const Link& link, const glm::dquat& q) {
+  return rotationVector(glm::inverse(link.ball_center) * q);
+}
+
+glm::dquat clampToBallRange(const Link& link, const glm::dquat& q) {
+  const glm::dvec3 v = ballRangeCoordinates(link, q);
+  const glm::dvec3 inside = glm::clamp(v, link.ball_lower, link.ball_upper);
+  if (inside == v) return q;
+  return glm::normalize(link.ball_center * fromRotationVector(inside));
+}
+
 Status BodyPlanSettings::validate() const {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   auto nonNegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
@@ -284,6 +315,13 @@ Status BodyPlan::validate() const {
     if (!finite(link.com)) return Status::error(where + "com must be finite");
     if (std::abs(glm::length(link.zero_rotation) - 1.0) > 1e-6)
       return Status::error(where + "zero_rotation must be a unit quaternion");
+    if (link.type == JointType::kBall) {
+      if (std::abs(glm::length(link.ball_center) - 1.0) > 1e-6)
+        return Status::error(where + "ball_center must be a unit quaternion");
+      for (int k = 0; k < 3; ++k)
+        if (!(link.ball_lower[k] < link.ball_upper[k]))
+          return Status::error(where + "ball_lower must be < ball_upper on every axis");
+    }
     if (link.type == JointType::kHinge) {
       if (std::abs(glm::length(link.hinge_axis) - 1.0) > 1e-6)
         return Status::error(where + "hinge_axis must be a unit vector");
@@ -480,7 +518,6 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     glm::dquat previous = kIdentity;
     double max_from_first = 0.0;
     glm::dmat3 moment(0.0);
-    glm::dvec3 vlo(std::numeric_limits<double>::max()), vhi(-std::numeric_limits<double>::max());
     for (int f = 0; f < clip.frame_count; ++f) {
       glm::dquat rel = kIdentity;
       for (int a : link.chain) rel = rel * clip.rotation(f, a);
@@ -492,16 +529,32 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
       max_from_first = std::max(max_from_first, 2.0 * std::acos(std::min(1.0, d)));
       const glm::dvec3 v = rotationVector(q);
       moment += glm::outerProduct(v, v);
-      vlo = glm::min(vlo, v);
-      vhi = glm::max(vhi, v);
     }
     if (max_from_first < settings.fixed_range_rad) {
       link.type = JointType::kFixed;
       link.zero_rotation = glm::normalize(link.zero_rotation * qs[0]);
       continue;
     }
-    link.ball_lower = vlo - settings.limit_margin_rad;
-    link.ball_upper = vhi + settings.limit_margin_rad;
+    // The ball range: what the clip does and the standing pose (the rest pose, where a run
+    // from standing starts and what the standing tests hold; a T-pose's arms lie outside a
+    // walk's). About the middle of those poses rather than the zero pose: the rotation vectors
+    // stay short there (the log map folds at pi), and the bounds are the observed extremes.
+    {
+      glm::dquat rest_rel = kIdentity;
+      for (int a : link.chain) rest_rel = rest_rel * skeleton.rest_rotations[a];
+      std::vector<glm::dquat> poses = qs;
+      poses.push_back(glm::normalize(zero_inv * rest_rel));
+      glm::dquat center = kIdentity;
+      glm::dvec3 vlo, vhi;
+      for (int pass = 0; pass < 3; ++pass) {  // the middle moves the extremes: settle it
+        rangeAbout(center, poses, vlo, vhi);
+        center = glm::normalize(center * fromRotationVector(0.5 * (vlo + vhi)));
+      }
+      rangeAbout(center, poses, vlo, vhi);
+      link.ball_center = positiveW(center);
+      link.ball_lower = vlo - settings.limit_margin_rad;
+      link.ball_upper = vhi + settings.limit_margin_rad;
+    }
     link.type = JointType::kBall;
     if (hinge_candidate) {
       glm::dvec3 axis;

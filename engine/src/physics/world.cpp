@@ -24,6 +24,8 @@
 #include <BulletDynamics/Featherstone/btMultiBodySphericalJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
+#include "ball_joint_limit.h"
+
 namespace sinew::physics {
 namespace {
 
@@ -149,7 +151,7 @@ struct World::Impl {
   std::vector<std::unique_ptr<btCompoundShape>> shapes;
   std::unique_ptr<btMultiBody> body;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;  // (links), base first
-  std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> limits;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> limits;       // hinge and ball ranges
   std::vector<std::unique_ptr<btMultiBodyConstraint>> servos;  // (links), null: no servo
   double servo_rate = 0.0;
 
@@ -450,11 +452,22 @@ Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPos
   }
   w.world->addMultiBody(&mb);
 
+  // Joint ranges: Bullet-solved constraints between each link and its parent (internal, like
+  // the servos). Both keep Bullet's default largest impulse per step (100 N m s).
   for (size_t li = 1; li < n; ++li) {
     const Link& link = plan.links[li];
-    if (link.type != JointType::kHinge) continue;
-    auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(
-        &mb, Impl::bulletLink(static_cast<int>(li)), link.hinge_lower, link.hinge_upper);
+    const int i = Impl::bulletLink(static_cast<int>(li));
+    std::unique_ptr<btMultiBodyConstraint> limit;
+    if (link.type == JointType::kHinge) {
+      limit = std::make_unique<btMultiBodyJointLimitConstraint>(&mb, i, link.hinge_lower,
+                                                                link.hinge_upper);
+    } else if (link.type == JointType::kBall) {
+      limit =
+          std::make_unique<BallJointLimit>(&mb, i, toBt(link.ball_center), toBt(link.ball_lower),
+                                           toBt(link.ball_upper), btScalar(100.0));
+    } else {
+      continue;
+    }
     w.world->addMultiBodyConstraint(limit.get());
     w.limits.push_back(std::move(limit));
   }
@@ -598,12 +611,18 @@ void World::setServoTargets(const LinkPose& target) {
   for (size_t li = 1; li < w.servos.size(); ++li) {
     btMultiBodyConstraint* servo = w.servos[li].get();
     if (servo == nullptr) continue;
-    if (w.plan.links[li].type == JointType::kBall) {
+    const Link& link = w.plan.links[li];
+    // A target outside the joint's range is unreachable: the servo aims at the range's nearest
+    // point instead of pushing into the limit with all its torque (a fight the solver's few
+    // iterations settle past the limit).
+    if (link.type == JointType::kBall) {
       auto* motor = static_cast<btMultiBodySphericalJointMotor*>(servo);
-      motor->setPositionTarget(toBt(glm::normalize(target.rotations[li])), spherical_gain);
+      const glm::dquat q = clampToBallRange(link, glm::normalize(target.rotations[li]));
+      motor->setPositionTarget(toBt(q), spherical_gain);
     } else {
       auto* motor = static_cast<btMultiBodyJointMotor*>(servo);
-      motor->setPositionTarget(target.angles[li], w.servo_rate);
+      motor->setPositionTarget(std::clamp(target.angles[li], link.hinge_lower, link.hinge_upper),
+                               w.servo_rate);
       motor->setVelocityTarget(0.0, 1.0);
     }
   }

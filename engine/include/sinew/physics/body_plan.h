@@ -63,8 +63,16 @@ struct Link {
   glm::dvec3 hinge_axis{1.0, 0.0, 0.0};          // hinge: unit axis in the link frame
   double hinge_lower = -3.0;  // hinge limits, radians, lower < upper; default from no clip
   double hinge_upper = 3.0;
-  glm::dvec3 ball_lower{-3.0};  // ball: observed range of the rotation vector log(q) per axis plus
-  glm::dvec3 ball_upper{3.0};   // the margin, radians (recorded; not enforced in this slice)
+  // Ball joint range, enforced by the world (a Bullet-solved limit between the link and its
+  // parent): the rotation vector v = log(ball_center^-1 q) stays in [ball_lower, ball_upper] per
+  // axis. ball_center is the middle of the observed range (the clip's frames and the standing
+  // pose) in joint coordinates; the bounds are the observed extremes of v about it plus the
+  // margin, radians, lower < upper (see ballRangeCoordinates). Without a clip (or for a joint the
+  // clip holds still, made ball by an override): +-3 rad about q = 1, which the limit never
+  // reaches (it acts below |v| = 0.9 pi): no limit in effect.
+  glm::dquat ball_center{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 ball_lower{-3.0};
+  glm::dvec3 ball_upper{3.0};
   Shape shape;
   double mass_kg = 1.0;      // > 0
   glm::dvec3 com{0.0};       // centre of mass in the link frame (the shape's centre), m
@@ -166,5 +174,12 @@ LinkPose standingPose(const BodyPlan& plan, const motion::Skeleton& skeleton);
 
 // Rotation of a link's frame relative to its parent's for a joint coordinate.
 glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double angle);
+
+// The coordinates a ball joint's range bounds: log(ball_center^-1 q), radians (|v| <= pi).
+// Inside the range when ball_lower <= v <= ball_upper on every axis.
+glm::dvec3 ballRangeCoordinates(const Link& link, const glm::dquat& q);
+// q itself when inside the ball range, else the range's point nearest to it in those coordinates
+// (each axis clamped to [ball_lower, ball_upper]).
+glm::dquat clampToBallRange(const Link& link, const glm::dquat& q);
 
 }  // namespace sinew::physics

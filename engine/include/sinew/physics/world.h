@@ -3,6 +3,9 @@
 // torques passed to step(), gravity and ground contact: nothing in this module applies a force or
 // torque to any body. Every evaluation builds a fresh World, so the same inputs give bit-identical
 // results. Bullet is an implementation detail: no Bullet type appears here.
+//
+// Joint ranges (BodyPlan: hinge_lower/upper, the ball_* range) are constraints the solver resolves
+// with the contacts: impulses between a link and its parent, like the servos, never on the base.
 #pragma once
 
 #include <cstdint>
@@ -101,6 +104,8 @@ class World {
   // at 240 Hz is not (see docs/physics.md). Call once, before the first step; the targets start
   // at the current pose. `max_torque_nm` (links): 0 leaves a joint unactuated.
   Status enableServos(std::span<const double> max_torque_nm, double rate);
+  // A target outside a joint's range is moved to the range's nearest point (hinges: the angle
+  // clamped; balls: clampToBallRange), which the servo can reach.
   void setServoTargets(const LinkPose& target);
   // Torques the servos applied in the last step (dofs, N m, each joint's frame).
   void servoTorques(std::span<double> out) const;
