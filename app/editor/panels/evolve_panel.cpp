@@ -3,6 +3,7 @@
 // best cost per generation (the Export panel writes the best). The
 // viewport replays the population's runs beside the clip while it is shown.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <vector>
@@ -14,21 +15,68 @@
 namespace sinew::editor {
 namespace {
 
+// Per generation, the lowest total cost and the lowest value of each weighted term, one line each
+// on a shared scale (log10: the terms span decades), with a legend: which part of the fitness
+// the search is buying down.
 void plotHistory(const search::Snapshot& snap) {
-  // The best so far after each generation (a generation's own best can be worse than an earlier
-  // one: CMA-ES samples afresh every generation).
-  std::vector<float> best;
+  if (snap.history.empty()) return;
+  constexpr int kLines = search::kFitnessTermCount + 1;
+  const ImU32 colors[kLines] = {IM_COL32(240, 240, 240, 255), IM_COL32(235, 90, 80, 255),
+                                IM_COL32(110, 200, 95, 255),  IM_COL32(85, 145, 240, 255),
+                                IM_COL32(230, 180, 60, 255),  IM_COL32(190, 120, 230, 255),
+                                IM_COL32(90, 210, 200, 255),  IM_COL32(160, 160, 160, 255)};
+  auto value = [&](const search::GenerationRecord& r, int line) {
+    const double v = line == 0 ? r.total.best : r.terms[static_cast<size_t>(line - 1)].best;
+    return std::log10(std::max(v, 1e-3));
+  };
+  double lo = 1e30, hi = -1e30;
   for (const search::GenerationRecord& r : snap.history) {
-    const float cost = static_cast<float>(r.total.best);
-    best.push_back(best.empty() ? cost : std::min(best.back(), cost));
+    for (int line = 0; line < kLines; ++line) {
+      lo = std::min(lo, value(r, line));
+      hi = std::max(hi, value(r, line));
+    }
   }
-  if (best.empty()) return;
-  const float top = best.front();
-  char label[64];
-  std::snprintf(label, sizeof label, "best cost so far (%.1f -> %.2f)", best.front(), best.back());
-  ImGui::TextDisabled("%s", label);
-  ImGui::PlotLines("##best", best.data(), static_cast<int>(best.size()), 0, nullptr, 0.0f,
-                   top * 1.05f, ImVec2(ImGui::GetContentRegionAvail().x, 56.0f));
+  hi = std::max(hi, lo + 0.5);
+  const float height = 60.0f;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  const ImVec2 plot_min(origin.x + 34.0f, origin.y + 2.0f);
+  const ImVec2 plot_max(origin.x + width - 4.0f, origin.y + height - 2.0f);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(plot_min, plot_max, IM_COL32(30, 32, 37, 255), 3.0f);
+  for (int decade = static_cast<int>(std::ceil(lo)); decade <= static_cast<int>(std::floor(hi));
+       ++decade) {
+    const float y =
+        plot_max.y - static_cast<float>((decade - lo) / (hi - lo)) * (plot_max.y - plot_min.y);
+    draw->AddLine(ImVec2(plot_min.x, y), ImVec2(plot_max.x, y), IM_COL32(255, 255, 255, 22));
+    char text[16];
+    std::snprintf(text, sizeof text, "%g", std::pow(10.0, decade));
+    draw->AddText(ImVec2(origin.x, y - 7.0f), IM_COL32(150, 155, 165, 255), text);
+  }
+  const size_t n = snap.history.size();
+  for (int line = kLines - 1; line >= 0; --line) {
+    std::vector<ImVec2> points;
+    for (size_t g = 0; g < n; ++g) {
+      const float x =
+          plot_min.x + (n == 1 ? 0.5f : static_cast<float>(g) / static_cast<float>(n - 1)) *
+                           (plot_max.x - plot_min.x);
+      const float y =
+          plot_max.y - static_cast<float>((value(snap.history[g], line) - lo) / (hi - lo)) *
+                           (plot_max.y - plot_min.y);
+      points.emplace_back(x, y);
+    }
+    if (points.size() == 1) points.push_back(ImVec2(points[0].x + 2.0f, points[0].y));
+    draw->AddPolyline(points.data(), static_cast<int>(points.size()), colors[line], 0,
+                      line == 0 ? 2.0f : 1.2f);
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  // The legend, in the lines' colours.
+  for (int line = 0; line < kLines; ++line) {
+    if (line > 0) ImGui::SameLine(0.0f, 8.0f);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(colors[line]));
+    ImGui::TextUnformatted(line == 0 ? "total" : search::fitnessTermName(line - 1));
+    ImGui::PopStyleColor();
+  }
 }
 
 }  // namespace
@@ -44,35 +92,43 @@ void drawEvolvePanel(EditorState& state) {
     return;
   }
 
-  ImGui::BeginDisabled(running);
-  ImGui::SetNextItemWidth(120.0f);
-  float minutes = static_cast<float>(evolution.settings.minutes);
-  if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
-    evolution.settings.minutes = minutes;
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(100.0f);
-  float window = static_cast<float>(evolution.settings.window_s);
-  if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
-    evolution.settings.window_s = window;
-  ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(90.0f);
-  const bool ga = evolution.settings.optimizer == "ga";
-  if (ImGui::BeginCombo("optimiser", ga ? "GA" : "CMA-ES")) {
-    if (ImGui::Selectable("CMA-ES", !ga)) evolution.settings.optimizer = "cmaes";
-    if (ImGui::Selectable("GA (baseline)", ga)) evolution.settings.optimizer = "ga";
-    ImGui::EndCombo();
+  if (running && evolution.session) {
+    // The settings cannot change under a running search: one line says what they are.
+    const search::EvolveSettings& used = evolution.session->settings();
+    ImGui::TextDisabled("%s, population %d, seed %llu, %.1f min, %.0f s window%s",
+                        used.optimizer == "ga" ? "GA" : "CMA-ES", evolution.session->population(),
+                        static_cast<unsigned long long>(used.seed), used.minutes,
+                        evolution.session->problem().simulation.seconds,
+                        evolution.settings.no_prior ? ", no prior" : "");
+  } else {
+    ImGui::SetNextItemWidth(120.0f);
+    float minutes = static_cast<float>(evolution.settings.minutes);
+    if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
+      evolution.settings.minutes = minutes;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(100.0f);
+    float window = static_cast<float>(evolution.settings.window_s);
+    if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
+      evolution.settings.window_s = window;
+    ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90.0f);
+    const bool ga = evolution.settings.optimizer == "ga";
+    if (ImGui::BeginCombo("optimiser", ga ? "GA" : "CMA-ES")) {
+      if (ImGui::Selectable("CMA-ES", !ga)) evolution.settings.optimizer = "cmaes";
+      if (ImGui::Selectable("GA (baseline)", ga)) evolution.settings.optimizer = "ga";
+      ImGui::EndCombo();
+    }
+    ImGui::SetNextItemWidth(90.0f);
+    ImGui::InputInt("population", &evolution.settings.population, 1, 4);
+    evolution.settings.population = std::clamp(evolution.settings.population, 0, 1000);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90.0f);
+    int seed = static_cast<int>(evolution.settings.seed);
+    if (ImGui::InputInt("seed", &seed))
+      evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
   }
-  ImGui::SetNextItemWidth(90.0f);
-  ImGui::InputInt("population", &evolution.settings.population, 1, 4);
-  evolution.settings.population = std::clamp(evolution.settings.population, 0, 1000);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(90.0f);
-  int seed = static_cast<int>(evolution.settings.seed);
-  if (ImGui::InputInt("seed", &seed))
-    evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
-  ImGui::EndDisabled();
   if (ImGui::TreeNode("fitness weights")) {
     // Live: a running search takes them from its next generation.
     bool changed = false;
@@ -109,6 +165,14 @@ void drawEvolvePanel(EditorState& state) {
     ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)", run_state.c_str(),
                 snap.generation, snap.evaluations, wall,
                 wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
+    if (running && evolution.session) {
+      // The budget spent (minutes of wall time since the start, as the session counts them).
+      const double budget_s = evolution.session->settings().minutes * 60.0;
+      const double spent = budget_s > 0.0 ? std::clamp(wall / budget_s, 0.0, 1.0) : 0.0;
+      char overlay[64];
+      std::snprintf(overlay, sizeof overlay, "%.0f / %.0f s of the budget", wall, budget_s);
+      ImGui::ProgressBar(static_cast<float>(spent), ImVec2(-1.0f, 0.0f), overlay);
+    }
     if (!snap.best_point.empty()) {
       // The individual clicked in the viewport, or the best so far.
       const int picked = evolution.selected;
