@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   sinew::app::addSimulateCommand(app, exit_code);
   sinew::app::addEvolveCommand(app, exit_code);
   sinew::app::addEditCommand(app, exit_code);
+  sinew::app::addRenderCommand(app, exit_code);
   sinew::app::addCreatureCommand(app, exit_code);
   try {
     if (argc == 1) {

@@ -34,6 +34,7 @@ void addStyleCommand(CLI::App& app, int& exit_code);
 void addSimulateCommand(CLI::App& app, int& exit_code);
 void addEvolveCommand(CLI::App& app, int& exit_code);
 void addEditCommand(CLI::App& app, int& exit_code);
+void addRenderCommand(CLI::App& app, int& exit_code);
 void addCreatureCommand(CLI::App& app, int& exit_code);
 
 }  // namespace sinew::app
