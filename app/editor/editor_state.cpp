@@ -1,6 +1,7 @@
 #include "editor/editor_state.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -22,6 +23,46 @@ const motion::Clip* EditorState::clip() const {
     return nullptr;
   }
   return &asset->clips[static_cast<size_t>(clip_index)];
+}
+
+std::vector<std::string> completePath(const std::string& partial, size_t limit) {
+  const size_t slash = partial.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : partial.substr(0, slash + 1);
+  const std::string start = slash == std::string::npos ? partial : partial.substr(slash + 1);
+  const std::string shown = slash == std::string::npos ? "" : partial.substr(0, slash + 1);
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(folder.empty() ? "/" : folder, ec), end;
+       !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(start, 0) != 0 || (name[0] == '.' && (start.empty() || start[0] != '.')))
+      continue;
+    std::error_code type_ec;
+    if (it->is_directory(type_ec)) {
+      out.push_back(shown + name + "/");
+    } else {
+      std::string extension = it->path().extension().string();
+      std::transform(extension.begin(), extension.end(), extension.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      if (extension == ".bvh" || extension == ".glb" || extension == ".gltf" ||
+          extension == ".json")
+        out.push_back(shown + name);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  if (out.size() > limit) out.resize(limit);
+  return out;
+}
+
+std::string commonStart(const std::vector<std::string>& candidates) {
+  if (candidates.empty()) return "";
+  std::string common = candidates.front();
+  for (const std::string& c : candidates) {
+    size_t n = 0;
+    while (n < common.size() && n < c.size() && common[n] == c[n]) ++n;
+    common.resize(n);
+  }
+  return common;
 }
 
 void rememberRecent(EditorState& state, const std::string& path) {

@@ -162,6 +162,13 @@ Result<spectral::StyleScores> measureClipStyle(EditorState& state);
 // Writes what the Export panel chose; the log names every file written (or why not).
 bool exportChosen(EditorState& state);
 
+// Path completion for the Files panel: the entries of `partial`'s folder whose names start with
+// its last part, folders (with a trailing '/') and the files the editor opens (.bvh, .glb, .gltf,
+// .json), sorted; hidden entries only when the last part starts with '.'. At most `limit`.
+std::vector<std::string> completePath(const std::string& partial, size_t limit = 50);
+// The longest common start of the candidates ("" for none).
+std::string commonStart(const std::vector<std::string>& candidates);
+
 // Puts `path` first in the recent files.
 void rememberRecent(EditorState& state, const std::string& path);
 

@@ -539,6 +539,24 @@ TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {
   EXPECT_EQ(recovered.value(), editor::captureProject(state));
 }
 
+TEST(PathCompletionTest, ListsFoldersAndMotionFilesThatStartWithTheTypedName) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir / "walks");
+  std::filesystem::create_directories(dir / ".hidden");
+  for (const char* name : {"walk.bvh", "wave.GLB", "wall.txt", "run.bvh", "walk.sinew.json"})
+    test::writeText(dir / name, "x");
+  const std::string base = dir.path().string() + "/";
+  EXPECT_EQ(editor::completePath(base + "wa"),
+            (std::vector<std::string>{base + "walk.bvh", base + "walk.sinew.json", base + "walks/",
+                                      base + "wave.GLB"}));
+  EXPECT_EQ(editor::commonStart(editor::completePath(base + "wa")), base + "wa");
+  EXPECT_EQ(editor::completePath(base + "r"), std::vector<std::string>{base + "run.bvh"});
+  EXPECT_EQ(editor::completePath(base + "."), std::vector<std::string>{base + ".hidden/"});
+  EXPECT_TRUE(editor::completePath(base + "nothing").empty());
+  EXPECT_TRUE(editor::completePath(base + "no/such/folder/x").empty());
+  EXPECT_EQ(editor::commonStart({"abc", "abd"}), "ab");
+}
+
 TEST(PreferencesTest, RoundTripAndDefaultsAndBrokenFiles) {
   test::TempDir dir;
   const std::filesystem::path file = dir / "sub" / "editor.json";

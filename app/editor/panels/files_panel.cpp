@@ -77,11 +77,37 @@ void drawFilesPanel(EditorState& state, FilesPanelState& panel) {
   ImGui::Separator();
   ImGui::TextDisabled("BVH, glTF (.glb/.gltf) or a project (.json): type a path or drop a file");
   ImGui::SetNextItemWidth(-70.0f);
-  const bool enter = ImGui::InputTextWithHint("##path", "path/to/clip.bvh", &panel.path,
-                                              ImGuiInputTextFlags_EnterReturnsTrue);
+  // Tab completes the path from the folder it names (the matches are listed under the field).
+  auto complete = [](ImGuiInputTextCallbackData* data) -> int {
+    auto* matches = static_cast<std::vector<std::string>*>(data->UserData);
+    *matches = completePath(std::string(data->Buf, static_cast<size_t>(data->BufTextLen)));
+    const std::string common = commonStart(*matches);
+    if (common.size() > static_cast<size_t>(data->BufTextLen)) {
+      data->DeleteChars(0, data->BufTextLen);
+      data->InsertChars(0, common.c_str());
+    }
+    if (matches->size() == 1) matches->clear();  // completed: nothing to choose from
+    return 0;
+  };
+  const bool tab = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab));
+  const bool enter = ImGui::InputTextWithHint(
+      "##path", "path/to/clip.bvh (Tab completes)", &panel.path,
+      ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_CallbackCompletion, complete,
+      &panel.matches);
+  if (ImGui::IsItemEdited() && !tab) panel.matches.clear();  // typing: the list is stale
   ImGui::SameLine();
   if ((ImGui::Button("Open", ImVec2(-1.0f, 0.0f)) || enter) && !panel.path.empty()) {
     if (openAny(state, panel.path, panel.animation)) panel.save_path.clear();
+  }
+  for (const std::string& match : panel.matches) {
+    // Clicking a match takes it (a folder: to complete further).
+    const size_t slash = match.find_last_of('/', match.size() - 2);
+    const std::string label = "  " + (slash == std::string::npos ? match : match.substr(slash + 1));
+    if (ImGui::Selectable(label.c_str())) {
+      panel.path = match;
+      panel.matches.clear();
+      break;
+    }
   }
   ImGui::SetNextItemWidth(-70.0f);
   ImGui::InputTextWithHint("##animation", "animation name (glTF, optional)", &panel.animation);

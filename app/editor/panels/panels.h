@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "editor/editor_state.h"
 
@@ -13,6 +14,7 @@ struct FilesPanelState {
   std::string path;       // the path field
   std::string animation;  // the animation wanted when opening a glTF
   std::string save_path;  // the "save as" field; filled with a suggestion when empty
+  std::vector<std::string> matches;  // the path field's completions after Tab, when several
 };
 
 // Saves the open project, or an untitled one to the save-as field's path (Ctrl+S).
