@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 namespace sinew::spectral {
@@ -128,10 +130,18 @@ std::vector<int> autoHarmonics(const motion::Skeleton& skeleton, const motion::C
   return k;
 }
 
+// What fitting the candidate windows reuses: the DFT plan (rebuilt only when a window's sample
+// count differs) and the sample buffers.
+struct FitScratch {
+  std::optional<HarmonicPlan> plan;
+  std::vector<double> sampled;
+  std::vector<std::complex<double>> bins;
+};
+
 // Samples every channel at L = strides x M even times over the window and measures its
 // harmonics. Translations lose their linear trend over the window (travel), which makes the rest
 // periodic.
-void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window) {
+void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window, FitScratch& scratch) {
   const MotionSignals& signals = spectrum.signals;
   const double dt = signals.frame_time;
   spectrum.window = window;
@@ -142,7 +152,11 @@ void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window) {
   const int samples = window.strides * spectrum.samples_per_stride;
   const double length = window.strides * spectrum.period_s;
   const double start_frame = window.start_s / dt;
-  std::vector<double> sampled(samples);
+  if (!scratch.plan || scratch.plan->samples() != static_cast<size_t>(samples)) {
+    scratch.plan.emplace(static_cast<size_t>(samples));
+  }
+  std::vector<double>& sampled = scratch.sampled;
+  sampled.resize(samples);
   spectrum.series.clear();
   spectrum.aperiodic_energy.clear();
   spectrum.trends.clear();
@@ -159,10 +173,107 @@ void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window) {
       sampled[i] = catmullRomAt(channel.values, start_frame + t / dt) - slope * t;
     }
     double aperiodic = 0.0;
-    spectrum.series.push_back(fitHarmonics(sampled, window.strides, &aperiodic));
+    spectrum.series.push_back(scratch.plan->fit(sampled, window.strides, &aperiodic, scratch.bins));
     spectrum.aperiodic_energy.push_back(aperiodic);
     spectrum.trends.push_back(slope);
   }
+}
+
+// A window's fit, moved out of (and back into) the spectrum while other windows are tried.
+struct WindowFit {
+  AnalysisWindow window;
+  double period_s = 0.0;
+  double omega0 = 0.0;
+  int samples_per_stride = 0;
+  glm::dvec3 travel_velocity{0.0};
+  std::vector<HarmonicSeries> series;
+  std::vector<double> aperiodic_energy;
+  std::vector<double> trends;
+};
+
+void exchangeFit(MotionSpectrum& spectrum, WindowFit& fit) {
+  std::swap(spectrum.window, fit.window);
+  std::swap(spectrum.period_s, fit.period_s);
+  std::swap(spectrum.omega0, fit.omega0);
+  std::swap(spectrum.samples_per_stride, fit.samples_per_stride);
+  std::swap(spectrum.travel_velocity, fit.travel_velocity);
+  std::swap(spectrum.series, fit.series);
+  std::swap(spectrum.aperiodic_energy, fit.aperiodic_energy);
+  std::swap(spectrum.trends, fit.trends);
+}
+
+// World positions of every joint, then every End Site (joint order), for one frame: the
+// translations of worldTransforms() with 3x3 linear parts (a quarter of the arithmetic of 4x4
+// products), which is all the position error needs.
+class PositionKinematics {
+ public:
+  explicit PositionKinematics(const motion::Skeleton& skeleton) : skeleton_(skeleton) {
+    const int joints = skeleton.jointCount();
+    linear_.resize(joints);
+    for (int j = 0; j < joints; ++j) {
+      if (skeleton.end_sites[j]) sites_.push_back(j);
+    }
+    points_.resize(joints + sites_.size());
+  }
+
+  const std::vector<glm::dvec3>& points(const motion::Clip& clip, int frame) {
+    for (int j = 0; j < skeleton_.jointCount(); ++j) {
+      glm::dmat3 local = glm::mat3_cast(clip.rotation(frame, j));
+      if (!clip.scales.empty()) {
+        const glm::dvec3 scale = clip.scale(frame, j);
+        for (int axis = 0; axis < 3; ++axis) local[axis] *= scale[axis];
+      }
+      const int parent = skeleton_.parents[j];
+      if (parent == motion::kNoParent) {
+        linear_[j] = local;
+        points_[j] = clip.translation(frame, j);
+      } else {
+        linear_[j] = linear_[parent] * local;
+        points_[j] = points_[parent] + linear_[parent] * clip.translation(frame, j);
+      }
+    }
+    const size_t joints = static_cast<size_t>(skeleton_.jointCount());
+    for (size_t n = 0; n < sites_.size(); ++n) {
+      const int j = sites_[n];
+      points_[joints + n] = points_[j] + linear_[j] * *skeleton_.end_sites[j];
+    }
+    return points_;
+  }
+
+ private:
+  const motion::Skeleton& skeleton_;
+  std::vector<int> sites_;             // joints with an End Site
+  std::vector<glm::dmat3> linear_;     // (joints) world rotation and scale
+  std::vector<glm::dvec3> points_;     // (joints + End Sites) world positions, metres
+};
+
+// Mean and max over frames and points (joints and End Sites) of the model's world position
+// error, centimetres: how candidate windows are ranked.
+struct PositionError {
+  double mean_cm = 0.0;
+  double max_cm = 0.0;
+};
+
+PositionError positionError(const motion::Skeleton& skeleton, const motion::Clip& original,
+                            const motion::Clip& model) {
+  PositionKinematics a(skeleton);
+  PositionKinematics b(skeleton);
+  PositionError error;
+  double sum = 0.0;
+  long count = 0;
+  const int frames = std::min(original.frame_count, model.frame_count);
+  for (int f = 0; f < frames; ++f) {
+    const std::vector<glm::dvec3>& pa = a.points(original, f);
+    const std::vector<glm::dvec3>& pb = b.points(model, f);
+    for (size_t p = 0; p < pa.size(); ++p) {
+      const double cm = 100.0 * glm::length(pa[p] - pb[p]);
+      sum += cm;
+      error.max_cm = std::max(error.max_cm, cm);
+    }
+    count += static_cast<long>(pa.size());
+  }
+  error.mean_cm = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return error;
 }
 
 }  // namespace
@@ -218,37 +329,44 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   // Real strides vary: of the windows with the smallest seams, keep the one whose model
   // describes its own frames best, where a viewer sees it: with a fixed K, the smallest mean
   // position error; for auto, the fewest coefficients within the tolerance (then the smallest
-  // worst error).
+  // worst error). Errors within a part in 1e9 are a tie, which the smaller seam (the earlier
+  // candidate) wins: perfectly periodic clips tie to rounding, and rounding must not choose.
+  // The best fit so far is kept aside, not fitted again.
+  constexpr double kTie = 1.0 - 1e-9;
+  FitScratch scratch;
+  WindowFit best;
   double best_error = -1.0;
   int best_count = 0;
   std::vector<int> best_k;
-  AnalysisWindow best_window = candidates.front();
   for (const AnalysisWindow& window : candidates) {
-    fitWindow(spectrum, window);  // trials reuse the spectrum: its signals are too big to copy
+    fitWindow(spectrum, window, scratch);  // trials reuse the spectrum: its signals are too big to copy
+    if (candidates.size() == 1 && !settings.auto_harmonics) {
+      best_error = 0.0;
+      break;  // nothing to choose between
+    }
     if (settings.auto_harmonics) {
       spectrum.joint_k = autoHarmonics(skeleton, clip, spectrum, settings.tolerance_cm);
     } else {
       spectrum.joint_k.assign(skeleton.jointCount(), settings.harmonics);
     }
-    JointError total;
-    measureError(skeleton, windowFrames(clip, spectrum), reconstruct(skeleton, spectrum),
-                 spectrum.signals, &total);
+    const PositionError error =
+        positionError(skeleton, windowFrames(clip, spectrum), reconstruct(skeleton, spectrum));
     const int count = spectrum.coefficientCount();
     const bool better =
         best_error < 0.0 ||
         (settings.auto_harmonics
-             ? std::make_pair(total.pos_err_cm_max > settings.tolerance_cm, count) <
+             ? std::make_pair(error.max_cm > settings.tolerance_cm, count) <
                    std::make_pair(best_error > settings.tolerance_cm, best_count) ||
-                   (count == best_count && total.pos_err_cm_max < best_error)
-             : total.pos_err_cm_mean < best_error);
+                   (count == best_count && error.max_cm < kTie * best_error)
+             : error.mean_cm < kTie * best_error);
     if (better) {
-      best_error = settings.auto_harmonics ? total.pos_err_cm_max : total.pos_err_cm_mean;
+      best_error = settings.auto_harmonics ? error.max_cm : error.mean_cm;
       best_count = count;
       best_k = spectrum.joint_k;
-      best_window = window;
+      exchangeFit(spectrum, best);
     }
   }
-  fitWindow(spectrum, best_window);
+  if (best.period_s > 0.0) exchangeFit(spectrum, best);
 
   // Harmonics kept per joint: the window's auto choice, or K with per-joint overrides.
   if (settings.auto_harmonics) {
@@ -299,11 +417,25 @@ motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum&
       out.scales.insert(out.scales.end(), signals.mean_scales.begin(), signals.mean_scales.end());
     }
   }
-  // Each channel's kept terms once, then every frame.
-  std::vector<std::vector<Harmonic>> terms(signals.channels.size());
+  // Each channel's kept terms once, as B cos D and B sin D: then sin(n w t + D) = B cos D
+  // sin(n w t) + B sin D cos(n w t), and a frame's sin(n w t), cos(n w t) for every n come from
+  // one sincos by the angle-addition recurrence (as the physics controller evaluates targets)
+  // instead of one sin per term. The recurrence's rounding grows with n: 1e-14 rad by n = 64.
+  struct Term {
+    int n = 1;
+    double b_cos = 0.0;
+    double b_sin = 0.0;
+  };
+  std::vector<std::vector<Term>> terms(signals.channels.size());
+  int highest = 1;
   for (size_t c = 0; c < terms.size(); ++c) {
-    terms[c] = spectrum.series[c].strongest(k[signals.channels[c].joint]);
+    for (const Harmonic& h : spectrum.series[c].strongest(k[signals.channels[c].joint])) {
+      terms[c].push_back({h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)});
+      highest = std::max(highest, h.n);
+    }
   }
+  std::vector<double> sines(highest + 1);
+  std::vector<double> cosines(highest + 1);
   for (int f = 0; f < out.frame_count; ++f) {
     const double t = (first + f) * signals.frame_time - spectrum.window.start_s;
     for (int j = 0; j < joints; ++j) {
@@ -311,10 +443,22 @@ motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum&
       out.rotations[n] = signals.mean_rotations[j];
       out.translations[n] = signals.mean_translations[j];
     }
+    const double angle = spectrum.omega0 * t;
+    const double s1 = std::sin(angle);
+    const double c1 = std::cos(angle);
+    sines[0] = 0.0;
+    cosines[0] = 1.0;
+    for (int h = 1; h <= highest; ++h) {
+      sines[h] = sines[h - 1] * c1 + cosines[h - 1] * s1;
+      cosines[h] = cosines[h - 1] * c1 - sines[h - 1] * s1;
+    }
     glm::dvec3 vector(0.0);
     for (size_t c = 0; c < terms.size(); ++c) {
       const SignalChannel& channel = signals.channels[c];
-      const double value = evaluate(spectrum.series[c].mean, terms[c], spectrum.omega0, t);
+      double value = spectrum.series[c].mean;
+      for (const Term& term : terms[c]) {
+        value += term.b_cos * sines[term.n] + term.b_sin * cosines[term.n];
+      }
       const size_t n = static_cast<size_t>(f) * joints + channel.joint;
       if (channel.kind == SignalKind::kRotation) {
         vector[channel.axis] = value;
