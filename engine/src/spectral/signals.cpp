@@ -28,7 +28,9 @@ glm::dvec3 rotationVector(const glm::dquat& q) {
   const glm::dvec3 xyz(q.x, q.y, q.z);
   const double s = glm::length(xyz);
   if (s < 1e-12) return 2.0 * xyz;  // small-angle limit: angle ~ 2 s, axis xyz / s
-  const double angle = 2.0 * std::atan2(s, q.w);
+  // atan(s / w) where w > 0 (the usual case) agrees with atan2 to an ulp at under half the cost:
+  // the analysis maps every joint of every frame.
+  const double angle = q.w > 0.0 ? 2.0 * std::atan(s / q.w) : 2.0 * std::atan2(s, q.w);
   return xyz * (angle / s);
 }
 
