@@ -84,14 +84,15 @@ MotionSignals extractSignals(const motion::Skeleton& skeleton, const motion::Cli
     const glm::dvec3* translations = &clip.translation(f, 0);
     for (int j = 0; j < joints; ++j) {
       glm::dquat q = rotations[j];
-      rotates[j] |= q != clip.rotation(0, j);
-      translates[j] |= translations[j] != clip.translation(0, j);
+      if (!rotates[j]) rotates[j] = q != clip.rotation(0, j);
+      if (!translates[j]) translates[j] = translations[j] != clip.translation(0, j);
       if (f > 0 && glm::dot(q, previous[j]) < 0.0) q = -q;
       previous[j] = q;
       sum[j] += glm::dvec4(q.x, q.y, q.z, q.w);
-      signals.mean_translations[j] += translations[j] / count;
+      signals.mean_translations[j] += translations[j];
     }
   }
+  for (glm::dvec3& mean : signals.mean_translations) mean /= count;
   for (int j = 0; j < joints; ++j) {
     const double norm = glm::length(sum[j]);
     const glm::dvec4& s = sum[j];
