@@ -39,13 +39,23 @@ HarmonicPlan::~HarmonicPlan() = default;
 HarmonicPlan::HarmonicPlan(HarmonicPlan&&) noexcept = default;
 HarmonicPlan& HarmonicPlan::operator=(HarmonicPlan&&) noexcept = default;
 
+void HarmonicPlan::transform(std::span<const double> samples,
+                             std::span<std::complex<double>> bins) const {
+  // Real DFT of length `size` as a complex DFT of half the length.
+  fft_->transform.transform_real(samples.data(), bins.data());
+}
+
 HarmonicSeries HarmonicPlan::fit(std::span<const double> samples, int periods,
                                  double* aperiodic_energy,
                                  std::vector<std::complex<double>>& bins) const {
-  const size_t size = samples.size();
-  // Real DFT of length `size` as a complex DFT of half the length.
-  bins.resize(size / 2);
-  fft_->transform.transform_real(samples.data(), bins.data());
+  bins.resize(samples.size() / 2);
+  transform(samples, bins);
+  return seriesFromBins(bins, samples.size(), periods, aperiodic_energy);
+}
+
+HarmonicSeries seriesFromBins(std::span<const std::complex<double>> bins, size_t samples,
+                              int periods, double* aperiodic_energy) {
+  const size_t size = samples;
   const double scale = 2.0 / static_cast<double>(size);
   HarmonicSeries series;
   series.mean = bins[0].real() / static_cast<double>(size);

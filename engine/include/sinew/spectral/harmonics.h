@@ -36,6 +36,11 @@ double evaluate(double mean, std::span<const Harmonic> terms, double omega0, dou
 HarmonicSeries fitHarmonics(std::span<const double> samples, int periods,
                             double* aperiodic_energy = nullptr);
 
+// The series measured from a real DFT's bins (HarmonicPlan::transform of `samples` samples
+// covering `periods` periods): what fitHarmonics returns.
+HarmonicSeries seriesFromBins(std::span<const std::complex<double>> bins, size_t samples,
+                              int periods, double* aperiodic_energy = nullptr);
+
 // The DFT plan for one sample count (KissFFT's twiddles, whose set-up costs more than a short
 // transform), built once and shared by every channel of that length. Immutable after
 // construction: threads may share one. Precondition: samples even and >= 4.
@@ -47,6 +52,11 @@ class HarmonicPlan {
   HarmonicPlan& operator=(HarmonicPlan&&) noexcept;
 
   size_t samples() const { return samples_; }
+
+  // The real DFT of `samples` (size samples()): bins[k] for k = 0 .. samples / 2 - 1, X_k =
+  // sum x_i e^{-2 pi i k i / size}, with the Nyquist bin in bins[0].imag(). Precondition:
+  // bins.size() == samples() / 2.
+  void transform(std::span<const double> samples, std::span<std::complex<double>> bins) const;
 
   // fitHarmonics with this plan: the same result. `bins` is the caller's scratch (resized to
   // samples / 2), so a loop over channels allocates nothing. Precondition: samples.size() ==
