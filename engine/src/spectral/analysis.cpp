@@ -1,6 +1,7 @@
 #include "sinew/spectral/analysis.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -10,6 +11,20 @@
 
 namespace sinew::spectral {
 namespace {
+
+// Seconds since the last lap (or construction).
+class StageClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 int nextPowerOfTwo(int n) {
   int p = 1;
@@ -442,22 +457,30 @@ int MotionSpectrum::coefficientCount() const {
 }
 
 Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::Clip& clip,
-                               const AnalysisSettings& settings) {
+                               const AnalysisSettings& settings, AnalysisTimings* timings) {
+  AnalysisTimings local_timings;
+  AnalysisTimings& time = timings != nullptr ? *timings : local_timings;
+  time = {};
+  StageClock clock;
   if (Status status = settings.validate(); !status.ok()) return status;
   if (Status status = clip.validate(skeleton); !status.ok()) return status;
   if (clip.frame_count < 2) {
     return Status::error("clip '" + clip.name + "' has one frame: nothing moves to analyse");
   }
+  time.checks_s = clock.lap();
   MotionSpectrum spectrum;
   spectrum.signals = extractSignals(skeleton, clip);
   const MotionSignals& signals = spectrum.signals;
   const double dt = clip.frame_time;
   const double duration = (clip.frame_count - 1) * dt;
+  time.signals_s = clock.lap();
 
   spectrum.stride = estimateStride(signals, settings.cycle);
+  time.stride_s = clock.lap();
   std::vector<AnalysisWindow> candidates;
   if (spectrum.stride.found) {
     candidates = candidateWindows(signals, spectrum.stride.period_s, settings.max_strides);
+    time.windows_s = clock.lap();
   } else {
     // No rhythm: the whole clip as one cycle (its seam is what it is), so there is still a
     // spectrum to look at, and the user is told.
@@ -482,6 +505,8 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   std::vector<int> best_k;
   for (const AnalysisWindow& window : candidates) {
     transformWindow(signals, window, scratch, trial);
+    ++time.candidates;
+    time.fits_s += clock.lap();
     if (candidates.size() == 1 && !settings.auto_harmonics) {
       std::swap(trial, best);
       break;  // nothing to choose between
@@ -511,6 +536,7 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
       best_k = spectrum.joint_k;
       std::swap(trial, best);
     }
+    time.ranking_s += clock.lap();
   }
   applyWindow(spectrum, best);
 
@@ -527,6 +553,7 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   }
   spectrum.joint_errors = measureError(skeleton, windowFrames(clip, spectrum),
                                        reconstruct(skeleton, spectrum), signals, &spectrum.total);
+  time.result_s = clock.lap();
   return spectrum;
 }
 
