@@ -6,7 +6,6 @@
 #include <complex>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <sstream>
 
 namespace sinew::spectral {
@@ -22,14 +21,27 @@ struct Selection {
   double variance = 0.0;  // summed over the selection
 };
 
+// Sum of f(v) over values in four interleaved partial sums: one running sum waits for every
+// addition in turn, four keep the adder busy (every channel of a long clip is summed twice).
+template <class F>
+double sum(const std::vector<double>& values, F f) {
+  double partial[4] = {0.0, 0.0, 0.0, 0.0};
+  const size_t size = values.size();
+  size_t i = 0;
+  for (; i + 4 <= size; i += 4) {
+    for (size_t k = 0; k < 4; ++k) partial[k] += f(values[i + k]);
+  }
+  for (; i < size; ++i) partial[0] += f(values[i]);
+  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+}
+
 Selection selectChannels(const MotionSignals& signals) {
   std::vector<std::pair<double, const std::vector<double>*>> ranked;
   for (const SignalChannel& channel : signals.channels) {
     if (channel.kind != SignalKind::kRotation) continue;
     const double n = static_cast<double>(channel.values.size());
-    const double mean = std::accumulate(channel.values.begin(), channel.values.end(), 0.0) / n;
-    double squares = 0.0;
-    for (double v : channel.values) squares += (v - mean) * (v - mean);
+    const double mean = sum(channel.values, [](double v) { return v; }) / n;
+    const double squares = sum(channel.values, [mean](double v) { return (v - mean) * (v - mean); });
     ranked.emplace_back(squares / n, &channel.values);
   }
   std::sort(ranked.begin(), ranked.end(),
