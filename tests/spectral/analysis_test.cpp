@@ -144,8 +144,9 @@ TEST(AnalysisTest, RealBandaiWalksMeetTheReferenceFigures) {
                 file, s.period_s, s.stride.similarity, s.total.rot_err_deg_rms,
                 s.total.rot_err_deg_max, s.total.pos_err_cm_mean, s.total.pos_err_cm_max,
                 s.coefficientCount());
-    // The issue asks for 1.2 degrees; the angry walk measures 1.25 whatever window is chosen
-    // (a fast stride of 24.5 frames whose toe-offs need more than five harmonics), inside the
+    // The issue asks for 1.2 degrees; the angry walk measures 1.25 (a fast stride of 24.5 frames
+    // whose toe-offs need more than five harmonics; the best of 48 windows by angle is 1.21, and
+    // pooling a joint's harmonics breaks 0.3 cm on the tired walk: docs/spectral.md), inside the
     // independent reference implementation's 0.9-1.3. Held to the reference there.
     const bool angry = std::string(file).find("angry") != std::string::npos;
     EXPECT_LE(s.total.rot_err_deg_rms, angry ? 1.3 : 1.2);

@@ -1,12 +1,30 @@
 #include "sinew/spectral/analysis.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <optional>
+#include <span>
 #include <sstream>
 
 namespace sinew::spectral {
 namespace {
+
+// Seconds since the last lap (or construction).
+class StageClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 int nextPowerOfTwo(int n) {
   int p = 1;
@@ -15,14 +33,113 @@ int nextPowerOfTwo(int n) {
 }
 
 // Frames whose time lies in [start, start + length): the frames the model describes.
-std::pair<int, int> windowRange(const MotionSpectrum& spectrum) {
-  const double dt = spectrum.signals.frame_time;
-  const double start = spectrum.window.start_s;
-  const double end = start + spectrum.window.strides * spectrum.period_s;
+std::pair<int, int> frameRange(const MotionSignals& signals, const AnalysisWindow& window,
+                               double period_s) {
+  const double dt = signals.frame_time;
+  const double start = window.start_s;
+  const double end = start + window.strides * period_s;
   const int first = static_cast<int>(std::ceil(start / dt - 1e-9));
   int last = static_cast<int>(std::ceil(end / dt - 1e-9)) - 1;
-  last = std::min(last, spectrum.signals.frame_count - 1);
+  last = std::min(last, signals.frame_count - 1);
   return {first, std::max(first, last)};
+}
+
+std::pair<int, int> windowRange(const MotionSpectrum& spectrum) {
+  return frameRange(spectrum.signals, spectrum.window, spectrum.period_s);
+}
+
+motion::Clip clipFrames(const motion::Clip& clip, int first, int last) {
+  motion::Clip out;
+  out.name = clip.name;
+  out.frame_time = clip.frame_time;
+  out.frame_count = last - first + 1;
+  out.joint_count = clip.joint_count;
+  const auto begin = static_cast<size_t>(first) * clip.joint_count;
+  const auto end = static_cast<size_t>(last + 1) * clip.joint_count;
+  out.rotations.assign(clip.rotations.begin() + begin, clip.rotations.begin() + end);
+  out.translations.assign(clip.translations.begin() + begin, clip.translations.begin() + end);
+  if (!clip.scales.empty()) out.scales.assign(clip.scales.begin() + begin, clip.scales.begin() + end);
+  return out;
+}
+
+// One kept harmonic as B cos D and B sin D: B sin(n w t + D) = B cos D sin(n w t) + B sin D
+// cos(n w t).
+struct Term {
+  int n = 1;
+  double b_cos = 0.0;
+  double b_sin = 0.0;
+};
+
+// What a channel's model is made of: A, the kept terms and the travel trend.
+struct ChannelTerms {
+  double mean = 0.0;
+  double trend = 0.0;
+  std::vector<Term> terms;
+};
+
+// The model's pose at frames first..last of the clip (t from start_s): mean pose, the channels'
+// series, travel. A frame's sin(n w t) and cos(n w t) for every n come from one sincos by the
+// angle-addition recurrence (as the physics controller evaluates targets) instead of one sin
+// per term; its rounding grows with n, to 1e-14 rad by n = 64.
+motion::Clip evaluateModel(const motion::Skeleton& skeleton, const MotionSignals& signals,
+                           int first, int last, double start_s, double omega0,
+                           const std::vector<ChannelTerms>& channels) {
+  const int joints = skeleton.jointCount();
+  motion::Clip out;
+  out.name = "model";
+  out.frame_time = signals.frame_time;
+  out.frame_count = last - first + 1;
+  out.joint_count = joints;
+  out.rotations.resize(static_cast<size_t>(out.frame_count) * joints);
+  out.translations.resize(out.rotations.size());
+  if (!signals.mean_scales.empty()) {
+    for (int f = 0; f < out.frame_count; ++f) {
+      out.scales.insert(out.scales.end(), signals.mean_scales.begin(), signals.mean_scales.end());
+    }
+  }
+  int highest = 1;
+  for (const ChannelTerms& channel : channels) {
+    for (const Term& term : channel.terms) highest = std::max(highest, term.n);
+  }
+  std::vector<double> sines(highest + 1);
+  std::vector<double> cosines(highest + 1);
+  for (int f = 0; f < out.frame_count; ++f) {
+    const double t = (first + f) * signals.frame_time - start_s;
+    for (int j = 0; j < joints; ++j) {
+      const size_t n = static_cast<size_t>(f) * joints + j;
+      out.rotations[n] = signals.mean_rotations[j];
+      out.translations[n] = signals.mean_translations[j];
+    }
+    const double angle = omega0 * t;
+    const double s1 = std::sin(angle);
+    const double c1 = std::cos(angle);
+    sines[0] = 0.0;
+    cosines[0] = 1.0;
+    for (int h = 1; h <= highest; ++h) {
+      sines[h] = sines[h - 1] * c1 + cosines[h - 1] * s1;
+      cosines[h] = cosines[h - 1] * c1 - sines[h - 1] * s1;
+    }
+    glm::dvec3 vector(0.0);
+    for (size_t c = 0; c < channels.size(); ++c) {
+      const SignalChannel& channel = signals.channels[c];
+      double value = channels[c].mean;
+      for (const Term& term : channels[c].terms) {
+        value += term.b_cos * sines[term.n] + term.b_sin * cosines[term.n];
+      }
+      const size_t n = static_cast<size_t>(f) * joints + channel.joint;
+      if (channel.kind == SignalKind::kRotation) {
+        vector[channel.axis] = value;
+        if (channel.axis == 2) {
+          out.rotations[n] = glm::normalize(signals.mean_rotations[channel.joint] *
+                                            fromRotationVector(vector));
+        }
+      } else {
+        // Travel continues at the window's velocity.
+        out.translations[n][channel.axis] += value + channels[c].trend * t;
+      }
+    }
+  }
+  return out;
 }
 
 // The point (a joint, or its End Site) and frame where the model is furthest from the original,
@@ -128,41 +245,191 @@ std::vector<int> autoHarmonics(const motion::Skeleton& skeleton, const motion::C
   return k;
 }
 
-// Samples every channel at L = strides x M even times over the window and measures its
-// harmonics. Translations lose their linear trend over the window (travel), which makes the rest
-// periodic.
-void fitWindow(MotionSpectrum& spectrum, const AnalysisWindow& window) {
-  const MotionSignals& signals = spectrum.signals;
+// What fitting the candidate windows reuses: the DFT plan (rebuilt only when a window's sample
+// count differs) and the sample buffer.
+struct FitScratch {
+  std::optional<HarmonicPlan> plan;
+  std::vector<double> sampled;
+};
+
+// A window's DFT before it becomes harmonic series: candidate windows are ranked on it, so the
+// windows that lose never pay for amplitudes and phases (a hypot and an atan2 per bin).
+struct WindowBins {
+  AnalysisWindow window;
+  double period_s = 0.0;
+  double omega0 = 0.0;
+  int samples_per_stride = 0;
+  int samples = 0;                            // strides x samples_per_stride
+  glm::dvec3 travel_velocity{0.0};
+  std::vector<std::complex<double>> bins;     // (channels x samples / 2) real DFTs
+  std::vector<double> trends;                 // (channels)
+
+  std::span<const std::complex<double>> channel(size_t c) const {
+    return {bins.data() + c * static_cast<size_t>(samples / 2), static_cast<size_t>(samples / 2)};
+  }
+};
+
+// Samples every channel at L = strides x M even times over the window and transforms it.
+// Translations lose their linear trend over the window (travel), which makes the rest periodic.
+void transformWindow(const MotionSignals& signals, const AnalysisWindow& window,
+                     FitScratch& scratch, WindowBins& out) {
   const double dt = signals.frame_time;
-  spectrum.window = window;
-  spectrum.period_s = window.period_s;
-  spectrum.omega0 = 2.0 * std::numbers::pi / spectrum.period_s;
-  spectrum.samples_per_stride =
-      std::max(16, nextPowerOfTwo(static_cast<int>(std::ceil(spectrum.period_s / dt - 1e-9))));
-  const int samples = window.strides * spectrum.samples_per_stride;
-  const double length = window.strides * spectrum.period_s;
+  out.window = window;
+  out.period_s = window.period_s;
+  out.omega0 = 2.0 * std::numbers::pi / out.period_s;
+  out.samples_per_stride =
+      std::max(16, nextPowerOfTwo(static_cast<int>(std::ceil(out.period_s / dt - 1e-9))));
+  out.samples = window.strides * out.samples_per_stride;
+  const int samples = out.samples;
+  const double length = window.strides * out.period_s;
   const double start_frame = window.start_s / dt;
-  std::vector<double> sampled(samples);
-  spectrum.series.clear();
-  spectrum.aperiodic_energy.clear();
-  spectrum.trends.clear();
-  spectrum.travel_velocity = glm::dvec3(0.0);
-  for (const SignalChannel& channel : signals.channels) {
+  if (!scratch.plan || scratch.plan->samples() != static_cast<size_t>(samples)) {
+    scratch.plan.emplace(static_cast<size_t>(samples));
+  }
+  std::vector<double>& sampled = scratch.sampled;
+  sampled.resize(samples);
+  out.bins.resize(signals.channels.size() * static_cast<size_t>(samples / 2));
+  out.trends.assign(signals.channels.size(), 0.0);
+  out.travel_velocity = glm::dvec3(0.0);
+  for (size_t c = 0; c < signals.channels.size(); ++c) {
+    const SignalChannel& channel = signals.channels[c];
     double slope = 0.0;
     if (channel.kind == SignalKind::kTranslation) {
       slope = (catmullRomAt(channel.values, start_frame + length / dt) -
                catmullRomAt(channel.values, start_frame)) / length;
-      if (channel.joint == signals.travel_joint) spectrum.travel_velocity[channel.axis] = slope;
+      if (channel.joint == signals.travel_joint) out.travel_velocity[channel.axis] = slope;
     }
     for (int i = 0; i < samples; ++i) {
       const double t = i * length / samples;
       sampled[i] = catmullRomAt(channel.values, start_frame + t / dt) - slope * t;
     }
-    double aperiodic = 0.0;
-    spectrum.series.push_back(fitHarmonics(sampled, window.strides, &aperiodic));
-    spectrum.aperiodic_energy.push_back(aperiodic);
-    spectrum.trends.push_back(slope);
+    scratch.plan->transform(sampled, {out.bins.data() + c * static_cast<size_t>(samples / 2),
+                                      static_cast<size_t>(samples / 2)});
+    out.trends[c] = slope;
   }
+}
+
+// The window's harmonic series into the spectrum.
+void applyWindow(MotionSpectrum& spectrum, const WindowBins& fit) {
+  spectrum.window = fit.window;
+  spectrum.period_s = fit.period_s;
+  spectrum.omega0 = fit.omega0;
+  spectrum.samples_per_stride = fit.samples_per_stride;
+  spectrum.travel_velocity = fit.travel_velocity;
+  spectrum.trends = fit.trends;
+  spectrum.series.resize(fit.trends.size());
+  spectrum.aperiodic_energy.resize(fit.trends.size());
+  for (size_t c = 0; c < fit.trends.size(); ++c) {
+    spectrum.series[c] = seriesFromBins(fit.channel(c), static_cast<size_t>(fit.samples),
+                                        fit.window.strides, &spectrum.aperiodic_energy[c]);
+  }
+}
+
+// The model with the k strongest harmonics of every channel straight from a window's bins
+// (amplitudes compared squared; B cos D = -Im and B sin D = Re of the scaled bin, since
+// D = arg X + pi / 2): what a fixed K ranks windows on.
+motion::Clip modelFromBins(const motion::Skeleton& skeleton, const MotionSignals& signals,
+                           const WindowBins& fit, int k) {
+  const int periods = fit.window.strides;
+  const size_t half = static_cast<size_t>(fit.samples / 2);
+  const double scale = 2.0 / static_cast<double>(fit.samples);
+  std::vector<ChannelTerms> channels(fit.trends.size());
+  std::vector<std::pair<double, int>> ranked;  // (squared magnitude, n)
+  for (size_t c = 0; c < channels.size(); ++c) {
+    const std::span<const std::complex<double>> bins = fit.channel(c);
+    ranked.clear();
+    for (size_t b = static_cast<size_t>(periods); b < half; b += static_cast<size_t>(periods)) {
+      ranked.emplace_back(std::norm(bins[b]), static_cast<int>(b) / periods);
+    }
+    const size_t keep = std::min(ranked.size(), static_cast<size_t>(std::max(k, 0)));
+    std::partial_sort(ranked.begin(), ranked.begin() + keep, ranked.end(),
+                      [](const auto& a, const auto& b) {
+                        return a.first > b.first || (a.first == b.first && a.second < b.second);
+                      });
+    channels[c].mean = bins[0].real() / static_cast<double>(fit.samples);
+    channels[c].trend = fit.trends[c];
+    for (size_t h = 0; h < keep; ++h) {
+      const int n = ranked[h].second;
+      const std::complex<double> coefficient = bins[static_cast<size_t>(n * periods)] * scale;
+      channels[c].terms.push_back({n, -coefficient.imag(), coefficient.real()});
+    }
+  }
+  const auto [first, last] = frameRange(signals, fit.window, fit.period_s);
+  return evaluateModel(skeleton, signals, first, last, fit.window.start_s, fit.omega0, channels);
+}
+
+// World positions of every joint, then every End Site (joint order), for one frame: the
+// translations of worldTransforms() with 3x3 linear parts (a quarter of the arithmetic of 4x4
+// products), which is all the position error needs.
+class PositionKinematics {
+ public:
+  explicit PositionKinematics(const motion::Skeleton& skeleton) : skeleton_(skeleton) {
+    const int joints = skeleton.jointCount();
+    linear_.resize(joints);
+    for (int j = 0; j < joints; ++j) {
+      if (skeleton.end_sites[j]) sites_.push_back(j);
+    }
+    points_.resize(joints + sites_.size());
+  }
+
+  const std::vector<glm::dvec3>& points(const motion::Clip& clip, int frame) {
+    for (int j = 0; j < skeleton_.jointCount(); ++j) {
+      glm::dmat3 local = glm::mat3_cast(clip.rotation(frame, j));
+      if (!clip.scales.empty()) {
+        const glm::dvec3 scale = clip.scale(frame, j);
+        for (int axis = 0; axis < 3; ++axis) local[axis] *= scale[axis];
+      }
+      const int parent = skeleton_.parents[j];
+      if (parent == motion::kNoParent) {
+        linear_[j] = local;
+        points_[j] = clip.translation(frame, j);
+      } else {
+        linear_[j] = linear_[parent] * local;
+        points_[j] = points_[parent] + linear_[parent] * clip.translation(frame, j);
+      }
+    }
+    const size_t joints = static_cast<size_t>(skeleton_.jointCount());
+    for (size_t n = 0; n < sites_.size(); ++n) {
+      const int j = sites_[n];
+      points_[joints + n] = points_[j] + linear_[j] * *skeleton_.end_sites[j];
+    }
+    return points_;
+  }
+
+ private:
+  const motion::Skeleton& skeleton_;
+  std::vector<int> sites_;             // joints with an End Site
+  std::vector<glm::dmat3> linear_;     // (joints) world rotation and scale
+  std::vector<glm::dvec3> points_;     // (joints + End Sites) world positions, metres
+};
+
+// Mean and max over frames and points (joints and End Sites) of the model's world position
+// error, centimetres: how candidate windows are ranked.
+struct PositionError {
+  double mean_cm = 0.0;
+  double max_cm = 0.0;
+};
+
+PositionError positionError(const motion::Skeleton& skeleton, const motion::Clip& original,
+                            const motion::Clip& model) {
+  PositionKinematics a(skeleton);
+  PositionKinematics b(skeleton);
+  PositionError error;
+  double sum = 0.0;
+  long count = 0;
+  const int frames = std::min(original.frame_count, model.frame_count);
+  for (int f = 0; f < frames; ++f) {
+    const std::vector<glm::dvec3>& pa = a.points(original, f);
+    const std::vector<glm::dvec3>& pb = b.points(model, f);
+    for (size_t p = 0; p < pa.size(); ++p) {
+      const double cm = 100.0 * glm::length(pa[p] - pb[p]);
+      sum += cm;
+      error.max_cm = std::max(error.max_cm, cm);
+    }
+    count += static_cast<long>(pa.size());
+  }
+  error.mean_cm = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return error;
 }
 
 }  // namespace
@@ -190,22 +457,30 @@ int MotionSpectrum::coefficientCount() const {
 }
 
 Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::Clip& clip,
-                               const AnalysisSettings& settings) {
+                               const AnalysisSettings& settings, AnalysisTimings* timings) {
+  AnalysisTimings local_timings;
+  AnalysisTimings& time = timings != nullptr ? *timings : local_timings;
+  time = {};
+  StageClock clock;
   if (Status status = settings.validate(); !status.ok()) return status;
   if (Status status = clip.validate(skeleton); !status.ok()) return status;
   if (clip.frame_count < 2) {
     return Status::error("clip '" + clip.name + "' has one frame: nothing moves to analyse");
   }
+  time.checks_s = clock.lap();
   MotionSpectrum spectrum;
   spectrum.signals = extractSignals(skeleton, clip);
   const MotionSignals& signals = spectrum.signals;
   const double dt = clip.frame_time;
   const double duration = (clip.frame_count - 1) * dt;
+  time.signals_s = clock.lap();
 
   spectrum.stride = estimateStride(signals, settings.cycle);
+  time.stride_s = clock.lap();
   std::vector<AnalysisWindow> candidates;
   if (spectrum.stride.found) {
     candidates = candidateWindows(signals, spectrum.stride.period_s, settings.max_strides);
+    time.windows_s = clock.lap();
   } else {
     // No rhythm: the whole clip as one cycle (its seam is what it is), so there is still a
     // spectrum to look at, and the user is told.
@@ -218,37 +493,52 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   // Real strides vary: of the windows with the smallest seams, keep the one whose model
   // describes its own frames best, where a viewer sees it: with a fixed K, the smallest mean
   // position error; for auto, the fewest coefficients within the tolerance (then the smallest
-  // worst error).
+  // worst error). Errors within a part in 1e9 are a tie, which the smaller seam (the earlier
+  // candidate) wins: perfectly periodic clips tie to rounding, and rounding must not choose.
+  // The best window's DFT is kept aside, not computed again.
+  constexpr double kTie = 1.0 - 1e-9;
+  FitScratch scratch;
+  WindowBins trial;
+  WindowBins best;
   double best_error = -1.0;
   int best_count = 0;
   std::vector<int> best_k;
-  AnalysisWindow best_window = candidates.front();
   for (const AnalysisWindow& window : candidates) {
-    fitWindow(spectrum, window);  // trials reuse the spectrum: its signals are too big to copy
-    if (settings.auto_harmonics) {
-      spectrum.joint_k = autoHarmonics(skeleton, clip, spectrum, settings.tolerance_cm);
-    } else {
-      spectrum.joint_k.assign(skeleton.jointCount(), settings.harmonics);
+    transformWindow(signals, window, scratch, trial);
+    ++time.candidates;
+    time.fits_s += clock.lap();
+    if (candidates.size() == 1 && !settings.auto_harmonics) {
+      std::swap(trial, best);
+      break;  // nothing to choose between
     }
-    JointError total;
-    measureError(skeleton, windowFrames(clip, spectrum), reconstruct(skeleton, spectrum),
-                 spectrum.signals, &total);
-    const int count = spectrum.coefficientCount();
+    PositionError error;
+    int count = 0;
+    if (settings.auto_harmonics) {
+      applyWindow(spectrum, trial);
+      spectrum.joint_k = autoHarmonics(skeleton, clip, spectrum, settings.tolerance_cm);
+      error = positionError(skeleton, windowFrames(clip, spectrum), reconstruct(skeleton, spectrum));
+      count = spectrum.coefficientCount();
+    } else {
+      const auto [first, last] = frameRange(signals, trial.window, trial.period_s);
+      error = positionError(skeleton, clipFrames(clip, first, last),
+                            modelFromBins(skeleton, signals, trial, settings.harmonics));
+    }
     const bool better =
         best_error < 0.0 ||
         (settings.auto_harmonics
-             ? std::make_pair(total.pos_err_cm_max > settings.tolerance_cm, count) <
+             ? std::make_pair(error.max_cm > settings.tolerance_cm, count) <
                    std::make_pair(best_error > settings.tolerance_cm, best_count) ||
-                   (count == best_count && total.pos_err_cm_max < best_error)
-             : total.pos_err_cm_mean < best_error);
+                   (count == best_count && error.max_cm < kTie * best_error)
+             : error.mean_cm < kTie * best_error);
     if (better) {
-      best_error = settings.auto_harmonics ? total.pos_err_cm_max : total.pos_err_cm_mean;
+      best_error = settings.auto_harmonics ? error.max_cm : error.mean_cm;
       best_count = count;
       best_k = spectrum.joint_k;
-      best_window = window;
+      std::swap(trial, best);
     }
+    time.ranking_s += clock.lap();
   }
-  fitWindow(spectrum, best_window);
+  applyWindow(spectrum, best);
 
   // Harmonics kept per joint: the window's auto choice, or K with per-joint overrides.
   if (settings.auto_harmonics) {
@@ -263,72 +553,31 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   }
   spectrum.joint_errors = measureError(skeleton, windowFrames(clip, spectrum),
                                        reconstruct(skeleton, spectrum), signals, &spectrum.total);
+  time.result_s = clock.lap();
   return spectrum;
 }
 
 motion::Clip windowFrames(const motion::Clip& clip, const MotionSpectrum& spectrum) {
   const auto [first, last] = windowRange(spectrum);
-  motion::Clip out;
-  out.name = clip.name;
-  out.frame_time = clip.frame_time;
-  out.frame_count = last - first + 1;
-  out.joint_count = clip.joint_count;
-  const auto begin = static_cast<size_t>(first) * clip.joint_count;
-  const auto end = static_cast<size_t>(last + 1) * clip.joint_count;
-  out.rotations.assign(clip.rotations.begin() + begin, clip.rotations.begin() + end);
-  out.translations.assign(clip.translations.begin() + begin, clip.translations.begin() + end);
-  if (!clip.scales.empty()) out.scales.assign(clip.scales.begin() + begin, clip.scales.begin() + end);
-  return out;
+  return clipFrames(clip, first, last);
 }
 
 motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum& spectrum,
                          const std::vector<int>& joint_k) {
   const std::vector<int>& k = joint_k.empty() ? spectrum.joint_k : joint_k;
   const MotionSignals& signals = spectrum.signals;
+  std::vector<ChannelTerms> channels(signals.channels.size());
+  for (size_t c = 0; c < channels.size(); ++c) {
+    channels[c].mean = spectrum.series[c].mean;
+    channels[c].trend = spectrum.trends[c];
+    for (const Harmonic& h : spectrum.series[c].strongest(k[signals.channels[c].joint])) {
+      channels[c].terms.push_back(
+          {h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)});
+    }
+  }
   const auto [first, last] = windowRange(spectrum);
-  const int joints = skeleton.jointCount();
-  motion::Clip out;
-  out.name = "model";
-  out.frame_time = signals.frame_time;
-  out.frame_count = last - first + 1;
-  out.joint_count = joints;
-  out.rotations.resize(static_cast<size_t>(out.frame_count) * joints);
-  out.translations.resize(out.rotations.size());
-  if (!signals.mean_scales.empty()) {
-    for (int f = 0; f < out.frame_count; ++f) {
-      out.scales.insert(out.scales.end(), signals.mean_scales.begin(), signals.mean_scales.end());
-    }
-  }
-  // Each channel's kept terms once, then every frame.
-  std::vector<std::vector<Harmonic>> terms(signals.channels.size());
-  for (size_t c = 0; c < terms.size(); ++c) {
-    terms[c] = spectrum.series[c].strongest(k[signals.channels[c].joint]);
-  }
-  for (int f = 0; f < out.frame_count; ++f) {
-    const double t = (first + f) * signals.frame_time - spectrum.window.start_s;
-    for (int j = 0; j < joints; ++j) {
-      const size_t n = static_cast<size_t>(f) * joints + j;
-      out.rotations[n] = signals.mean_rotations[j];
-      out.translations[n] = signals.mean_translations[j];
-    }
-    glm::dvec3 vector(0.0);
-    for (size_t c = 0; c < terms.size(); ++c) {
-      const SignalChannel& channel = signals.channels[c];
-      const double value = evaluate(spectrum.series[c].mean, terms[c], spectrum.omega0, t);
-      const size_t n = static_cast<size_t>(f) * joints + channel.joint;
-      if (channel.kind == SignalKind::kRotation) {
-        vector[channel.axis] = value;
-        if (channel.axis == 2) {
-          out.rotations[n] = glm::normalize(signals.mean_rotations[channel.joint] *
-                                            fromRotationVector(vector));
-        }
-      } else {
-        // Travel continues at the window's velocity.
-        out.translations[n][channel.axis] += value + spectrum.trends[c] * t;
-      }
-    }
-  }
-  return out;
+  return evaluateModel(skeleton, signals, first, last, spectrum.window.start_s, spectrum.omega0,
+                       channels);
 }
 
 std::vector<JointError> measureError(const motion::Skeleton& skeleton,

@@ -6,7 +6,6 @@
 #include <complex>
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <sstream>
 
 namespace sinew::spectral {
@@ -22,15 +21,28 @@ struct Selection {
   double variance = 0.0;  // summed over the selection
 };
 
+// Sum of f(v) over values in four interleaved partial sums: one running sum waits for every
+// addition in turn, four keep the adder busy (every channel of a long clip is summed twice).
+template <class F>
+double sum(const std::vector<double>& values, F f) {
+  double partial[4] = {0.0, 0.0, 0.0, 0.0};
+  const size_t size = values.size();
+  size_t i = 0;
+  for (; i + 4 <= size; i += 4) {
+    for (size_t k = 0; k < 4; ++k) partial[k] += f(values[i + k]);
+  }
+  for (; i < size; ++i) partial[0] += f(values[i]);
+  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+}
+
 Selection selectChannels(const MotionSignals& signals) {
   std::vector<std::pair<double, const std::vector<double>*>> ranked;
   for (const SignalChannel& channel : signals.channels) {
     if (channel.kind != SignalKind::kRotation) continue;
     const double n = static_cast<double>(channel.values.size());
-    const double mean = std::accumulate(channel.values.begin(), channel.values.end(), 0.0) / n;
-    double variance = 0.0;
-    for (double v : channel.values) variance += (v - mean) * (v - mean) / n;
-    ranked.emplace_back(variance, &channel.values);
+    const double mean = sum(channel.values, [](double v) { return v; }) / n;
+    const double squares = sum(channel.values, [mean](double v) { return (v - mean) * (v - mean); });
+    ranked.emplace_back(squares / n, &channel.values);
   }
   std::sort(ranked.begin(), ranked.end(),
             [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -52,36 +64,64 @@ double sampleAt(const std::vector<double>& values, double frame) {
   return values[a] * (1.0 - u) + values[a + 1] * u;
 }
 
+// The smallest even size >= n whose only prime factors are 2, 3 and 5: KissFFT has butterflies
+// for those, and a power of two can be almost twice as long.
+size_t fftSize(size_t n) {
+  for (size_t size = std::max<size_t>(n + n % 2, 2);; size += 2) {
+    size_t rest = size;
+    for (size_t factor : {2, 3, 5}) {
+      while (rest % factor == 0) rest /= factor;
+    }
+    if (rest == 1) return size;
+  }
+}
+
 // Similarity of the pose with itself `lag` frames later, 1 - (mean squared change) / (2 x
 // variance), at every integer lag 0 .. frames - 1 at once. The squared differences expand to
 // two sums of squares (prefix sums) minus twice the autocorrelation, and the autocorrelations of
 // all channels add up to one inverse FFT of their summed power spectra: O(channels x N log N)
-// instead of O(channels x N x lags).
+// instead of O(channels x N x lags). Two real channels share one complex FFT (a in the real
+// part, b in the imaginary): |A_k|^2 + |B_k|^2 = (|Z_k|^2 + |Z_{N-k}|^2) / 2, and the summed
+// power spectrum is real and even, so its transform back is a real FFT of half the size.
 std::vector<double> similarityTable(const Selection& selection, int frames) {
   std::vector<double> table(frames, 0.0);
   if (selection.variance <= 0.0 || frames < 2) return table;
-  size_t size = 1;
-  while (size < 2 * static_cast<size_t>(frames)) size *= 2;
+  const size_t size = fftSize(2 * static_cast<size_t>(frames) - 1);  // no wrap-around
   const kissfft<double> forward(size, false);
-  const kissfft<double> inverse(size, true);
+  const kissfft<double> half(size / 2, false);
   std::vector<std::complex<double>> padded(size);
   std::vector<std::complex<double>> spectrum(size);
   std::vector<double> power(size, 0.0);
   std::vector<double> prefix(frames + 1, 0.0);  // running sum of squares over all channels
-  for (const std::vector<double>* values : selection.values) {
+  const auto centred = [frames](const std::vector<double>& values, std::vector<double>& out) {
     double mean = 0.0;
-    for (double v : *values) mean += v / frames;
+    for (double v : values) mean += v / frames;
+    for (int f = 0; f < frames; ++f) out[f] = values[f] - mean;  // the differences are unchanged
+  };
+  std::vector<double> a(frames);
+  std::vector<double> b(frames);
+  for (size_t c = 0; c < selection.values.size(); c += 2) {
+    centred(*selection.values[c], a);
+    if (c + 1 < selection.values.size()) {
+      centred(*selection.values[c + 1], b);
+    } else {
+      std::fill(b.begin(), b.end(), 0.0);
+    }
     std::fill(padded.begin(), padded.end(), 0.0);
     for (int f = 0; f < frames; ++f) {
-      padded[f] = (*values)[f] - mean;  // centred: the differences are unchanged, rounding is less
-      prefix[f + 1] += std::norm(padded[f]);
+      padded[f] = {a[f], b[f]};
+      prefix[f + 1] += a[f] * a[f] + b[f] * b[f];
     }
     forward.transform(padded.data(), spectrum.data());
-    for (size_t k = 0; k < size; ++k) power[k] += std::norm(spectrum[k]);
+    power[0] += std::norm(spectrum[0]);
+    for (size_t k = 1; k < size; ++k) {
+      power[k] += 0.5 * (std::norm(spectrum[k]) + std::norm(spectrum[size - k]));
+    }
   }
   for (int f = 0; f < frames; ++f) prefix[f + 1] += prefix[f];
-  for (size_t k = 0; k < size; ++k) padded[k] = power[k];
-  inverse.transform(padded.data(), spectrum.data());
+  // Real and even: the forward transform equals the inverse. Bin 0's real part is lag 0 (its
+  // imaginary part carries the Nyquist bin, not needed: lags stop at frames - 1 < size / 2).
+  half.transform_real(power.data(), spectrum.data());
   for (int lag = 0; lag < frames - 1; ++lag) {
     const int count = frames - lag;
     const double autocorrelation = spectrum[lag].real() / static_cast<double>(size);

@@ -10,10 +10,15 @@
 namespace sinew::spectral {
 
 std::vector<Harmonic> HarmonicSeries::strongest(int k) const {
+  // Descending amplitude, ties in ascending n (the order `harmonics` is in): what a stable sort
+  // by amplitude gives, for the first k only.
   std::vector<Harmonic> sorted = harmonics;
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const Harmonic& a, const Harmonic& b) { return a.amplitude > b.amplitude; });
-  if (k < static_cast<int>(sorted.size())) sorted.resize(std::max(k, 0));
+  const auto stronger = [](const Harmonic& a, const Harmonic& b) {
+    return a.amplitude > b.amplitude || (a.amplitude == b.amplitude && a.n < b.n);
+  };
+  const size_t keep = std::min(sorted.size(), static_cast<size_t>(std::max(k, 0)));
+  std::partial_sort(sorted.begin(), sorted.begin() + keep, sorted.end(), stronger);
+  sorted.resize(keep);
   return sorted;
 }
 
@@ -23,16 +28,38 @@ double evaluate(double mean, std::span<const Harmonic> terms, double omega0, dou
   return value;
 }
 
-HarmonicSeries fitHarmonics(std::span<const double> samples, int periods,
-                            double* aperiodic_energy) {
-  const size_t size = samples.size();
-  // Real DFT of length `size` as a complex DFT of half the length (KissFFT's transform_real).
-  const kissfft<double> fft(size / 2, false);
-  std::vector<std::complex<double>> bins(size / 2);
-  fft.transform_real(samples.data(), bins.data());
+struct HarmonicPlan::Fft {
+  explicit Fft(size_t half) : transform(half, false) {}
+  kissfft<double> transform;  // complex, half the real length (KissFFT's transform_real)
+};
+
+HarmonicPlan::HarmonicPlan(size_t samples)
+    : samples_(samples), fft_(std::make_unique<const Fft>(samples / 2)) {}
+HarmonicPlan::~HarmonicPlan() = default;
+HarmonicPlan::HarmonicPlan(HarmonicPlan&&) noexcept = default;
+HarmonicPlan& HarmonicPlan::operator=(HarmonicPlan&&) noexcept = default;
+
+void HarmonicPlan::transform(std::span<const double> samples,
+                             std::span<std::complex<double>> bins) const {
+  // Real DFT of length `size` as a complex DFT of half the length.
+  fft_->transform.transform_real(samples.data(), bins.data());
+}
+
+HarmonicSeries HarmonicPlan::fit(std::span<const double> samples, int periods,
+                                 double* aperiodic_energy,
+                                 std::vector<std::complex<double>>& bins) const {
+  bins.resize(samples.size() / 2);
+  transform(samples, bins);
+  return seriesFromBins(bins, samples.size(), periods, aperiodic_energy);
+}
+
+HarmonicSeries seriesFromBins(std::span<const std::complex<double>> bins, size_t samples,
+                              int periods, double* aperiodic_energy) {
+  const size_t size = samples;
   const double scale = 2.0 / static_cast<double>(size);
   HarmonicSeries series;
   series.mean = bins[0].real() / static_cast<double>(size);
+  series.harmonics.reserve(size / 2 / periods);
   double other = 0.0;
   // Bins 1 .. size/2 - 1 (the Nyquist bin, packed in bins[0].imag(), has no phase to speak of).
   for (size_t k = 1; k < size / 2; ++k) {
@@ -48,6 +75,12 @@ HarmonicSeries fitHarmonics(std::span<const double> samples, int periods,
   }
   if (aperiodic_energy != nullptr) *aperiodic_energy = other;
   return series;
+}
+
+HarmonicSeries fitHarmonics(std::span<const double> samples, int periods,
+                            double* aperiodic_energy) {
+  std::vector<std::complex<double>> bins;
+  return HarmonicPlan(samples.size()).fit(samples, periods, aperiodic_energy, bins);
 }
 
 }  // namespace sinew::spectral

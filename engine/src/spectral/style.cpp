@@ -1,6 +1,7 @@
 #include "sinew/spectral/style.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <complex>
 #include <map>
@@ -51,7 +52,75 @@ glm::dquat chordalMean(const std::vector<glm::dquat>& rotations) {
                     : rotations.front();
 }
 
+// A limb's proximal share of its length: its joints from the root down to the first whose bone
+// is at least this fraction of the limb (the clavicle and the upper arm; the hip and the thigh).
+constexpr double kProximalBone = 0.25;
+
+// Length of the longest chain of bones below each joint (End Sites included), metres.
+std::vector<double> reaches(const motion::Skeleton& skeleton) {
+  const int joints = skeleton.jointCount();
+  std::vector<double> reach(joints, 0.0);
+  for (int j = joints - 1; j >= 0; --j) {  // children come after their parents
+    if (skeleton.end_sites[j]) reach[j] = std::max(reach[j], glm::length(*skeleton.end_sites[j]));
+    const int parent = skeleton.parents[j];
+    if (parent != motion::kNoParent) {
+      reach[parent] = std::max(reach[parent], glm::length(skeleton.offsets[j]) + reach[j]);
+    }
+  }
+  return reach;
+}
+
 }  // namespace
+
+std::vector<int> carriageJoints(const motion::Skeleton& skeleton) {
+  const int joints = skeleton.jointCount();
+  const std::vector<JointGroup> groups = jointGroups(skeleton);
+  const int pelvis = motion::pelvisJoint(skeleton);
+  std::vector<bool> above_pelvis(joints, false);
+  for (int j = pelvis; j != motion::kNoParent; j = skeleton.parents[j]) above_pelvis[j] = true;
+  const std::vector<double> reach = reaches(skeleton);
+  const auto limb = [&groups](int j) {
+    return groups[j] == JointGroup::kArms || groups[j] == JointGroup::kLegs;
+  };
+  std::vector<bool> chosen(joints, false);
+  for (int j = 0; j < joints; ++j) {
+    if (above_pelvis[j]) continue;
+    const int parent = skeleton.parents[j];
+    if (groups[j] == JointGroup::kSpine) {
+      chosen[j] = true;
+    } else if (groups[j] == JointGroup::kHead) {
+      // The neck, not the head (nor the jaw and face below it).
+      std::string name = skeleton.names[j];
+      std::transform(name.begin(), name.end(), name.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      chosen[j] = name.find("neck") != std::string::npos;
+    } else if (limb(j) && (parent == motion::kNoParent || !limb(parent))) {
+      // A limb's root: follow its longest chain down to the first long bone.
+      const double length = reach[j];
+      for (int k = j; k >= 0;) {
+        chosen[k] = true;
+        int next = -1;
+        double longest = -1.0;
+        for (int child = k + 1; child < joints; ++child) {
+          if (skeleton.parents[child] != k) continue;
+          const double through = glm::length(skeleton.offsets[child]) + reach[child];
+          if (through > longest) {
+            longest = through;
+            next = child;
+          }
+        }
+        const double bone = next >= 0 ? glm::length(skeleton.offsets[next]) : reach[k];
+        if (next < 0 || bone >= kProximalBone * length) break;
+        k = next;
+      }
+    }
+  }
+  std::vector<int> out;
+  for (int j = 0; j < joints; ++j) {
+    if (chosen[j]) out.push_back(j);
+  }
+  return out;
+}
 
 std::pair<int, int> phaseReference(const TargetMotion& target) {
   std::pair<int, int> best{-1, 0};
@@ -186,6 +255,10 @@ Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMot
                                const std::vector<std::pair<std::string, TargetMotion>>& library) {
   if (library.empty()) return Status::error("style library is empty");
   const int joints = clip.jointCount();
+  if (skeleton.jointCount() != joints) {
+    return Status::error("style measurement: the clip has " + std::to_string(joints) +
+                         " joints, its skeleton " + std::to_string(skeleton.jointCount()));
+  }
   for (const auto& [label, entry] : library) {
     if (entry.jointCount() != joints) {
       return Status::error("style library entry '" + label + "' has " +
@@ -193,30 +266,21 @@ Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMot
                            std::to_string(joints));
     }
   }
-  // Features: the attitude of the trunk and head (each spine and head joint's posture relative to
-  // the library's mean, radians). Measured on the Bandai set, that is what a style changes and an
-  // action does not: running bends knees and elbows and swings arms harder than walking whatever
-  // the mood, while a tired walk and a tired run both fold the chest forward (+20 and +12
-  // degrees against -5 and 0 for the normal ones).
-  // The pelvis (the first joint that branches) and the joints above it carry the global heading,
-  // which says where the actor walked, not how: they are left out.
-  const std::vector<JointGroup> groups = jointGroups(skeleton);
-  const int pelvis = motion::pelvisJoint(skeleton);
-  std::vector<bool> above_pelvis(joints, false);
-  for (int j = pelvis; j != motion::kNoParent; j = skeleton.parents[j]) above_pelvis[j] = true;
+  // Features: the carriage (carriageJoints): each trunk, neck and proximal limb joint's posture
+  // relative to the library's mean, radians. See carriageJoints for why those joints.
+  const std::vector<int> carriage = carriageJoints(skeleton);
   std::vector<glm::dquat> mean_posture(joints);
-  for (int j = 0; j < joints; ++j) {
+  for (int j : carriage) {
     std::vector<glm::dquat> bases;
     for (const auto& [label, entry] : library) bases.push_back(entry.base_rotations[j]);
     mean_posture[j] = chordalMean(bases);
   }
   const auto features = [&](const TargetMotion& target) {
     std::vector<double> f;
-    for (int j = 0; j < joints; ++j) {
-      if (above_pelvis[j] || (groups[j] != JointGroup::kSpine && groups[j] != JointGroup::kHead)) {
-        continue;
-      }
-      const glm::dvec3 v = rotationVector(glm::conjugate(mean_posture[j]) * target.base_rotations[j]);
+    for (int j : carriage) {
+      glm::dquat relative = glm::conjugate(mean_posture[j]) * target.base_rotations[j];
+      if (relative.w < 0.0) relative = -relative;  // the short way (q and -q are one rotation)
+      const glm::dvec3 v = rotationVector(relative);
       f.insert(f.end(), {v.x, v.y, v.z});
     }
     return f;

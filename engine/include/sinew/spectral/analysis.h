@@ -55,8 +55,27 @@ struct MotionSpectrum {
   int coefficientCount() const;  // A + 2 per kept harmonic, over every channel
 };
 
+// Where one analyze() call spent its time, seconds of steady clock per stage: what the analysis
+// benchmark prints as shares. Filled only when asked for.
+struct AnalysisTimings {
+  double checks_s = 0.0;     // settings and clip validation
+  double signals_s = 0.0;    // extractSignals
+  double stride_s = 0.0;     // estimateStride
+  double windows_s = 0.0;    // candidateWindows
+  double fits_s = 0.0;       // every candidate window resampled and transformed
+  double ranking_s = 0.0;    // every candidate's model and its position error (auto: K search)
+  double result_s = 0.0;     // the chosen window's series and its full error table
+  int candidates = 0;        // windows fitted
+
+  double total() const {
+    return checks_s + signals_s + stride_s + windows_s + fits_s + ranking_s + result_s;
+  }
+};
+
+// `timings` (nullable) receives the time per stage.
 Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::Clip& clip,
-                               const AnalysisSettings& settings = {});
+                               const AnalysisSettings& settings = {},
+                               AnalysisTimings* timings = nullptr);
 
 // The model's pose at the clip's frame times inside the analysed window: a clip of those frames
 // on the same skeleton (joints that do not move keep their mean pose; travel continues at

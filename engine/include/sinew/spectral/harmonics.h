@@ -3,6 +3,9 @@
 // (KissFFT, double precision) of samples that cover whole periods.
 #pragma once
 
+#include <complex>
+#include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -32,5 +35,39 @@ double evaluate(double mean, std::span<const Harmonic> terms, double omega0, dou
 // Precondition: samples.size() even and >= 4, periods >= 1.
 HarmonicSeries fitHarmonics(std::span<const double> samples, int periods,
                             double* aperiodic_energy = nullptr);
+
+// The series measured from a real DFT's bins (HarmonicPlan::transform of `samples` samples
+// covering `periods` periods): what fitHarmonics returns.
+HarmonicSeries seriesFromBins(std::span<const std::complex<double>> bins, size_t samples,
+                              int periods, double* aperiodic_energy = nullptr);
+
+// The DFT plan for one sample count (KissFFT's twiddles, whose set-up costs more than a short
+// transform), built once and shared by every channel of that length. Immutable after
+// construction: threads may share one. Precondition: samples even and >= 4.
+class HarmonicPlan {
+ public:
+  explicit HarmonicPlan(size_t samples);
+  ~HarmonicPlan();
+  HarmonicPlan(HarmonicPlan&&) noexcept;
+  HarmonicPlan& operator=(HarmonicPlan&&) noexcept;
+
+  size_t samples() const { return samples_; }
+
+  // The real DFT of `samples` (size samples()): bins[k] for k = 0 .. samples / 2 - 1, X_k =
+  // sum x_i e^{-2 pi i k i / size}, with the Nyquist bin in bins[0].imag(). Precondition:
+  // bins.size() == samples() / 2.
+  void transform(std::span<const double> samples, std::span<std::complex<double>> bins) const;
+
+  // fitHarmonics with this plan: the same result. `bins` is the caller's scratch (resized to
+  // samples / 2), so a loop over channels allocates nothing. Precondition: samples.size() ==
+  // samples(), periods >= 1.
+  HarmonicSeries fit(std::span<const double> samples, int periods, double* aperiodic_energy,
+                     std::vector<std::complex<double>>& bins) const;
+
+ private:
+  struct Fft;
+  size_t samples_ = 0;
+  std::unique_ptr<const Fft> fft_;
+};
 
 }  // namespace sinew::spectral

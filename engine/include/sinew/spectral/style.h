@@ -53,10 +53,21 @@ Result<StyleVector> measureStyle(const TargetMotion& neutral, const TargetMotion
 Result<TargetMotion> applyStyles(const TargetMotion& target,
                                  const std::vector<std::pair<const StyleVector*, double>>& styles);
 
-// Style measurement: how close `clip` is to each labelled library clip (clips of one skeleton) in
-// what a style changes and an action does not: the attitude of the trunk and head (the posture
-// of every spine and head joint below the pelvis), compared as RMS angles. Scores in [0, 1],
-// summing to 1.
+// The joints whose posture tells a style across actions, the body's carriage: the trunk (spine
+// joints below the pelvis) and the neck, and each limb's proximal part, from its root down to
+// its first long bone (at least a quarter of the limb: clavicle and upper arm, hip and thigh).
+// Left out: joints above the pelvis (they carry the global heading: where the actor went, not
+// how), the head (it turns to keep the gaze where the action needs it: running lifts it 15
+// degrees against the neck whatever the mood, and the tired walk's flexed neck is compensated by
+// a head lifted 5 degrees), and the distal joints (elbows, knees, hands, feet), which the action's
+// mechanics set: running bends the elbows 40 degrees, as much as the angry walk does.
+// Skeleton order.
+std::vector<int> carriageJoints(const motion::Skeleton& skeleton);
+
+// Style measurement: how close `clip` is to each labelled library clip (clips of one skeleton)
+// in what a style changes and an action does not: the posture of the carriage joints (each one's
+// mean rotation, relative to the library's mean), compared as RMS angles. Scores in [0, 1]
+// (a Gaussian of the RMS angle, 5 degrees wide, normalised), summing to 1.
 struct StyleScores {
   std::string closest;
   std::vector<std::pair<std::string, double>> scores;  // label -> score, library order
