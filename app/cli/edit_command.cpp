@@ -1,5 +1,6 @@
 // `sinew edit [FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot OUT.png
-// --frames N [--evolve-generations G]]`: the editor.
+// --frames N [--evolve-generations G]] [--no-shadows] [--no-mesh]`: the editor.
+#include <cstdint>
 #include <memory>
 
 #include "cli/commands.h"
@@ -28,6 +29,10 @@ void addEditCommand(CLI::App& app, int& exit_code) {
                       "With --screenshot and --evolve: wait for this many generations first "
                       "(at most 2 minutes)")
       ->check(CLI::Range(0, 10000));
+  command->add_flag_function("--no-shadows", [options](std::int64_t) { options->shadows = false; },
+                    "Start with the key light's shadows off (the Timeline's Shadows toggle)");
+  command->add_flag_function("--no-mesh", [options](std::int64_t) { options->mesh = false; },
+                    "Start with glTF characters drawn as capsules, not their skinned meshes");
   command->callback([options, &exit_code] {
     if (options->file.empty()) options->file = SINEW_ASSET_DIR "/biped_walk.bvh";
     options->shader_dir = SINEW_SHADER_DIR;

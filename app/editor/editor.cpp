@@ -237,6 +237,8 @@ int runEditor(const EditorOptions& options) {
     if (Status status = renderer.init(options.shader_dir); !status.ok()) {
       state.log.error(status.message());
     }
+    state.view.shadows = options.shadows;
+    state.view.show_mesh = options.mesh;
     if (!options.file.empty()) {
       files_panel.path = options.file;
       files_panel.animation = options.animation;
@@ -295,6 +297,7 @@ int runEditor(const EditorOptions& options) {
       glfwGetWindowSize(window, &win_w, &win_h);
       const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
       const float sy = win_h > 0 ? float(fb_h) / float(win_h) : 1.0f;
+      renderer.renderShadows(scene);  // before the window is touched (see renderer.h)
       glViewport(0, 0, fb_w, fb_h);
       glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -305,6 +308,7 @@ int runEditor(const EditorOptions& options) {
       rect.height = std::max(static_cast<int>(std::lround(v.size.y * sy)), 1);
       rect.y = fb_h - static_cast<int>(std::lround(v.pos.y * sy)) - rect.height;
       renderer.draw(rect, camera, scene, state.view.show_grid);
+      for (LogLine& line : renderer.takeMessages()) state.log.add(line.level, std::move(line.text));
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
       // A screenshot of a search waits for its generations (at most two minutes of wall time).

@@ -15,6 +15,8 @@ struct EditorOptions {
   double evolve_minutes = 2.0;   // its budget
   int evolve_generations = 0;    // with a screenshot: frames count only once the search has
                                  // finished this many generations (waiting at most 2 minutes)
+  bool shadows = true;           // the view's Shadows toggle at start
+  bool mesh = true;              // the view's Mesh toggle at start (glTF skinned meshes)
 };
 
 // Runs until the window closes (or the screenshot is written). Returns the process exit code:
