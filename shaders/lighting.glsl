@@ -19,18 +19,23 @@ uniform float u_shadow_size;           // shadow-map texels across
 
 in vec3 v_shadow;  // from shadowCoord (shadow_coord.glsl) in the vertex shader
 
-// How much of the key light reaches this fragment (0 shadowed .. 1 lit): four filtered taps (each
-// a 2 x 2 comparison) a texel either side, an edge about four texels wide. llvmpipe pays for every
-// tap on every pixel, so there are only four.
+// How much of the key light reaches this fragment (0 shadowed .. 1 lit). One filtered tap (a
+// 2 x 2 comparison) on the characters themselves, where a crisp edge is right and llvmpipe's cost
+// per pixel counts; four a texel either side (an edge about four texels wide) where the shader
+// defines SINEW_SOFT_SHADOW first: the floor, where the shadow is read as the character's contact.
 float keyVisibility() {
   vec3 s = v_shadow;
   if (s.x <= 0.0 || s.y <= 0.0 || s.x >= 1.0 || s.y >= 1.0 || s.z >= 1.0) return 1.0;
   s.z -= 0.0005;
+#ifdef SINEW_SOFT_SHADOW
   float d = 1.0 / u_shadow_size;
   return 0.25 * (texture(u_shadow_map, vec3(s.xy + vec2(-d, -d), s.z)) +
                  texture(u_shadow_map, vec3(s.xy + vec2(d, -d), s.z)) +
                  texture(u_shadow_map, vec3(s.xy + vec2(-d, d), s.z)) +
                  texture(u_shadow_map, vec3(s.xy + vec2(d, d), s.z)));
+#else
+  return texture(u_shadow_map, s);
+#endif
 }
 #else
 float keyVisibility() { return 1.0; }

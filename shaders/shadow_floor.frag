@@ -3,6 +3,7 @@
 // darkens whatever floor and lines are there; it fades with the fog.
 in vec3 v_world;
 
+#define SINEW_SOFT_SHADOW 1
 #include "lighting.glsl"
 
 uniform float u_strength;  // how dark a full shadow makes the floor, 0..1

@@ -297,7 +297,6 @@ int runEditor(const EditorOptions& options) {
       glfwGetWindowSize(window, &win_w, &win_h);
       const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
       const float sy = win_h > 0 ? float(fb_h) / float(win_h) : 1.0f;
-      renderer.renderShadows(scene);  // before the window is touched (see renderer.h)
       glViewport(0, 0, fb_w, fb_h);
       glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -19,7 +19,9 @@ namespace sinew::editor {
 namespace {
 
 const glm::vec3 kBackground{0.105f, 0.112f, 0.125f};
-const glm::vec3 kLightDir{0.45f, 0.80f, 0.40f};  // towards the light, world
+// Towards the key light, world: high (52 degrees) and from the right of the default camera, so
+// that characters are lit on the side the camera sees and their shadows fall visibly to the left.
+const glm::vec3 kLightDir{0.62f, 0.80f, 0.00f};
 
 // Texture units: the base colour texture, the shadow map, the skinning matrices.
 constexpr GLint kBaseTextureUnit = 0;
@@ -165,6 +167,30 @@ void setFloat(GLuint program, const char* name, float value) {
 }
 void setInt(GLuint program, const char* name, GLint value) {
   glUniform1i(glGetUniformLocation(program, name), value);
+}
+
+// The convex hull of `points`, counter-clockwise seen from above (Andrew's monotone chain; at
+// most as many points as given, collinear ones dropped).
+std::vector<glm::vec2> convexHull(std::vector<glm::vec2> points) {
+  std::sort(points.begin(), points.end(), [](const glm::vec2& a, const glm::vec2& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+  });
+  if (points.size() < 3) return points;
+  auto turn = [](const glm::vec2& o, const glm::vec2& a, const glm::vec2& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<glm::vec2> hull(2 * points.size());
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {  // lower chain
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0.0f) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // the last point is the first again
+  return hull;
 }
 
 // "1,728": counts in messages, as the docs write them.
@@ -438,23 +464,21 @@ Renderer::Light Renderer::fitLight(const Scene& scene) const {
   const float far_d = depth + radius + ground + 0.05f * radius;
   light.view_proj =
       glm::ortho(c.x - radius, c.x + radius, c.y - radius, c.y + radius, near_d, far_d) * view;
-  // Where shadows can fall on the ground: the casters' box projected down along the light (a
-  // few texels wider for the filter). Only this patch of floor runs the shadow taps.
-  glm::vec2 lo(1e30f), hi(-1e30f);
+  // Where shadows can fall on the ground: the convex hull of the casters' box (a few texels
+  // larger, for the filter) projected down along the light. Only this patch of floor runs the
+  // shadow taps.
+  const float margin = 4.0f * light.texel;
+  std::vector<glm::vec2> points;
   for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p((corner & 1) ? scene.bounds_max.x : scene.bounds_min.x,
-                      std::max((corner & 2) ? scene.bounds_max.y : scene.bounds_min.y, 0.0f),
-                      (corner & 4) ? scene.bounds_max.z : scene.bounds_min.z);
+    const glm::vec3 p((corner & 1) ? scene.bounds_max.x + margin : scene.bounds_min.x - margin,
+                      std::max((corner & 2) ? scene.bounds_max.y + margin : 0.0f, 0.0f),
+                      (corner & 4) ? scene.bounds_max.z + margin : scene.bounds_min.z - margin);
     const glm::vec3 g = p - to_light * (p.y / std::max(to_light.y, 0.2f));
-    lo = glm::min(lo, glm::vec2(g.x, g.z));
-    hi = glm::max(hi, glm::vec2(g.x, g.z));
+    points.emplace_back(g.x, g.z);
   }
-  lo -= glm::vec2(4.0f * light.texel);
-  hi += glm::vec2(4.0f * light.texel);
-  light.ground[0] = glm::vec3(lo.x, 0.0f, lo.y);
-  light.ground[1] = glm::vec3(hi.x, 0.0f, lo.y);
-  light.ground[2] = glm::vec3(hi.x, 0.0f, hi.y);
-  light.ground[3] = glm::vec3(lo.x, 0.0f, hi.y);
+  const std::vector<glm::vec2> hull = convexHull(points);
+  light.ground_count = static_cast<int>(hull.size());
+  for (size_t i = 0; i < hull.size(); ++i) light.ground[i] = glm::vec3(hull[i].x, 0.0f, hull[i].y);
   return light;
 }
 
@@ -572,20 +596,12 @@ void Renderer::drawSkinned(GLuint program, const Scene& scene, const glm::mat4& 
   glActiveTexture(GL_TEXTURE0);
 }
 
-void Renderer::renderShadows(const Scene& scene) {
-  if (ready_) syncMeshes(scene);
-  shadows_on_ = ready_ && scene.shadows && !scene.empty;
-  light_ = fitLight(scene);
-  if (shadows_on_) renderShadowMap(scene, light_);
-  shadows_rendered_ = true;
-}
-
 void Renderer::draw(const ViewportRect& rect, const OrbitCamera& camera, const Scene& scene,
                     bool grid) {
-  if (!shadows_rendered_) renderShadows(scene);
-  shadows_rendered_ = false;
-  const bool shadows = shadows_on_;
-  const Light& light = light_;
+  if (ready_) syncMeshes(scene);
+  const bool shadows = ready_ && scene.shadows && !scene.empty;
+  const Light light = fitLight(scene);
+  if (shadows) renderShadowMap(scene, light);
 
   glViewport(rect.x, rect.y, rect.width, rect.height);
   glEnable(GL_SCISSOR_TEST);
@@ -632,9 +648,10 @@ void Renderer::draw(const ViewportRect& rect, const OrbitCamera& camera, const S
       const GLuint floor = programs_[kShadowFloor];
       glUseProgram(floor);
       setMat4(floor, "u_view_proj", view_proj);
-      glUniform3fv(glGetUniformLocation(floor, "u_corners"), 4, glm::value_ptr(light.ground[0]));
+      glUniform3fv(glGetUniformLocation(floor, "u_corners"), light.ground_count,
+                   glm::value_ptr(light.ground[0]));
       setFloat(floor, "u_strength", kFloorShadowStrength);
-      glDrawArrays(GL_TRIANGLES, 0, 6);
+      if (light.ground_count >= 3) glDrawArrays(GL_TRIANGLE_FAN, 0, light.ground_count);
     }
     glBindVertexArray(0);
     glDepthMask(GL_TRUE);

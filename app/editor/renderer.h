@@ -42,14 +42,8 @@ class Renderer {
   Status init(const std::filesystem::path& shader_dir);
   bool ready() const { return ready_; }
 
-  // Renders the key light's shadow map for `scene` (and uploads its meshes when they are new).
-  // Call it before anything is drawn into the window this frame, then draw() with the same scene:
-  // on Mesa's llvmpipe, switching to the shadow map's framebuffer in mid-frame makes the driver
-  // write out the window's pixels and read them back (about 4 ms a frame at 1600x900). draw()
-  // calls it itself when it was not called.
-  void renderShadows(const Scene& scene);
-
-  // Clears `rect` and draws the scene into it (the grid when `grid`).
+  // Renders the shadow map, then clears `rect` and draws the scene into it (the grid when
+  // `grid`). Uploads the scene's meshes the first time it shows them.
   void draw(const ViewportRect& rect, const OrbitCamera& camera, const Scene& scene, bool grid);
 
   // What the renderer has to say since the last call (meshes uploaded, materials it could not
@@ -64,8 +58,9 @@ class Renderer {
   };
   struct Light {
     glm::mat4 view_proj{1.0f};
-    float texel = 0.0f;   // metres per shadow-map texel
-    glm::vec3 ground[4];  // where shadows can fall on the ground (y = 0), metres, in order
+    float texel = 0.0f;    // metres per shadow-map texel
+    glm::vec3 ground[8];   // where shadows can fall on the ground (y = 0): a convex polygon,
+    int ground_count = 0;  // its corners in order, metres
   };
   // The shader programs. Lit ones come twice, without and with shadows (see lighting.glsl).
   enum Program {
@@ -107,9 +102,6 @@ class Renderer {
   std::shared_ptr<const motion::GltfSource> meshes_source_;  // whose meshes are uploaded
   const motion::MotionAsset* meshes_asset_ = nullptr;
   std::vector<LogLine> messages_;
-  Light light_;                    // this frame's, from renderShadows
-  bool shadows_on_ = false;        // this frame draws shadows
-  bool shadows_rendered_ = false;  // renderShadows ran since the last draw
 };
 
 }  // namespace sinew::editor
