@@ -12,6 +12,9 @@ uniform mat4 u_view_proj;
 out vec3 v_world;
 out vec3 v_normal;
 out vec4 v_color;
+invariant gl_Position;  // the depth-only and lit programs must place every fragment alike
+
+#include "shadow_coord.glsl"
 
 void main() {
   vec3 a = in_a_radius.xyz;
@@ -25,5 +28,6 @@ void main() {
   v_world = mix(a, in_b, in_end) + n * in_a_radius.w;
   v_normal = n;
   v_color = in_color;
+  shadowCoord(v_world, n);
   gl_Position = u_view_proj * vec4(v_world, 1.0);
 }

@@ -1,10 +1,12 @@
 #version 330 core
 // Anti-aliased grid lines every 10 cm (faint), 1 m, and the X (red) and Z (blue) axes, over a
-// slightly lighter floor; everything fades with distance.
+// slightly lighter floor; everything fades with distance (distances scale with the camera's, so
+// a large scene's floor does not vanish). Shadows are laid over it by shadow_floor.frag.
 in vec3 v_world;
 
 uniform vec3 u_eye;
 uniform vec3 u_background;
+uniform float u_fade_scale;  // 1 at a character's framing distance, more when the camera is farther
 
 out vec4 out_color;
 
@@ -17,7 +19,7 @@ float lines(vec2 p, float spacing, float width_px) {
 
 void main() {
   vec2 p = v_world.xz;
-  float dist = length(u_eye - v_world);
+  float dist = length(u_eye - v_world) / u_fade_scale;
   float minor = lines(p, 0.1, 1.0) * 0.10 * clamp(1.0 - dist / 12.0, 0.0, 1.0);
   float major = lines(p, 1.0, 1.2) * 0.32;
   vec3 color = vec3(0.58, 0.60, 0.64);

@@ -1,6 +1,7 @@
 // `sinew edit [PROJECT | FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot
-// OUT.png
-// --frames N [--evolve-generations G]]`: the editor.
+// OUT.png --frames N [--evolve-generations G] [--panel-shots DIR]] [--bench --shown N]
+// [--no-shadows] [--no-mesh]`: the editor.
+#include <cstdint>
 #include <memory>
 
 #include "cli/commands.h"
@@ -44,6 +45,10 @@ void addEditCommand(CLI::App& app, int& exit_code) {
       "--bench", options->bench,
       "Print the editor's frame time (median, 95th percentile): --frames frames of the "
       "clip alone, then as many while the search runs with --shown characters");
+  command->add_flag_function("--no-shadows", [options](std::int64_t) { options->shadows = false; },
+                    "Start with the key light's shadows off (the Timeline's Shadows toggle)");
+  command->add_flag_function("--no-mesh", [options](std::int64_t) { options->mesh = false; },
+                    "Start with glTF characters drawn as capsules, not their skinned meshes");
   command->callback([options, &exit_code] {
     if (options->file.empty()) options->file = SINEW_ASSET_DIR "/default.sinew.json";
     options->shader_dir = SINEW_SHADER_DIR;

@@ -404,6 +404,8 @@ int runEditor(const EditorOptions& options) {
                           kept.string() + " (first in Recent)");
       }
     }
+    state.view.shadows = options.shadows;
+    state.view.show_mesh = options.mesh;
     if (!options.file.empty()) {
       files_panel.path = options.file;
       files_panel.animation = options.animation;
@@ -525,6 +527,7 @@ int runEditor(const EditorOptions& options) {
       rect.height = std::max(static_cast<int>(std::lround(v.size.y * sy)), 1);
       rect.y = fb_h - static_cast<int>(std::lround(v.pos.y * sy)) - rect.height;
       renderer.draw(rect, camera, scene, state.view.show_grid);
+      for (LogLine& line : renderer.takeMessages()) state.log.add(line.level, std::move(line.text));
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
       const double elapsed_s = std::chrono::duration<double>(now - start).count();

@@ -19,6 +19,8 @@ struct EditorOptions {
   std::string panel_dir;         // with a screenshot: also each panel as DIR/<panel>.png
   bool bench = false;            // print frame times: `frames` frames of the clip alone, then
                                  // `frames` frames with the population while the search runs
+  bool shadows = true;           // the view's Shadows toggle at start
+  bool mesh = true;              // the view's Mesh toggle at start (glTF skinned meshes)
 };
 
 // Runs until the window closes (or the screenshot is written). Returns the process exit code:

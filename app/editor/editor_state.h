@@ -59,6 +59,9 @@ struct ViewToggles {
   bool follow = true;         // the camera follows the character's root
   bool show_grid = true;
   bool show_end_sites = true;
+  bool show_mesh = true;       // glTF characters as their skinned meshes (else as capsules)
+  bool show_skeleton = false;  // with the mesh: the capsules drawn over it, translucent
+  bool shadows = true;         // the key light's shadow map
 };
 
 // The spectrum of the chosen clip and the model the user is editing (K per joint).

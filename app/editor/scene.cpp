@@ -6,6 +6,9 @@
 #include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "editor/skinning.h"
 
 namespace sinew::editor {
 namespace {
@@ -19,6 +22,8 @@ const glm::vec4 kModelSelectedColor{1.00f, 0.80f, 0.30f, 0.55f};
 const glm::vec4 kBestColor{0.55f, 1.00f, 0.45f, 0.85f};        // the population's best run
 const glm::vec4 kIndividualColor{0.72f, 0.64f, 1.00f, 0.55f};  // the others
 const glm::vec4 kPickedColor{1.00f, 0.95f, 0.80f, 0.90f};      // the one clicked
+const float kXrayOpacity = 0.6f;   // the skeleton drawn over the mesh
+const size_t kBoundsSamples = 4096;  // skinned vertices per mesh looked at for the bounds
 
 bool containsNoCase(const std::string& text, const char* word) {
   std::string lower = text;
@@ -36,16 +41,61 @@ glm::vec4 sideColor(const std::string& name) {
   return kCentreColor;
 }
 
-// The character's size: the rest pose's extent, so capsules scale with any rig.
-float characterHeight(const motion::Skeleton& skeleton) {
+// The rest pose's joints' largest extent, file units.
+double restExtent(const motion::Skeleton& skeleton) {
   const std::vector<glm::dmat4> rest = motion::restWorldTransforms(skeleton);
   glm::dvec3 lo(1e30), hi(-1e30);
   for (const glm::dmat4& m : rest) {
     lo = glm::min(lo, glm::dvec3(m[3]));
     hi = glm::max(hi, glm::dvec3(m[3]));
   }
-  const double extent = rest.empty() ? 1.0 : std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  return static_cast<float>(std::max(extent, 0.1));
+  return rest.empty() ? 0.0 : std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+}
+
+// World transforms at a fractional frame: local rotations slerped, translations and scales
+// blended, between the two frames around it. (Blending world matrices instead would shorten bones
+// and shrink a skinned mesh between frames: by 2 mm on the Fox's legs.)
+void worldBetweenFrames(const motion::Skeleton& skeleton, const motion::Clip& clip, double frame,
+                        std::span<glm::dmat4> out) {
+  const int f0 = static_cast<int>(std::floor(frame));
+  const int f1 = std::min(f0 + 1, clip.frame_count - 1);
+  const double w = frame - f0;
+  const int joints = skeleton.jointCount();
+  motion::Clip pose;
+  pose.frame_time = clip.frame_time;
+  pose.frame_count = 1;
+  pose.joint_count = joints;
+  pose.rotations.resize(static_cast<size_t>(joints));
+  pose.translations.resize(static_cast<size_t>(joints));
+  if (!clip.scales.empty()) pose.scales.resize(static_cast<size_t>(joints));
+  for (int j = 0; j < joints; ++j) {
+    pose.rotations[j] = glm::slerp(clip.rotation(f0, j), clip.rotation(f1, j), w);
+    pose.translations[j] = glm::mix(clip.translation(f0, j), clip.translation(f1, j), w);
+    if (!pose.scales.empty()) pose.scales[j] = glm::mix(clip.scale(f0, j), clip.scale(f1, j), w);
+  }
+  motion::worldTransforms(skeleton, pose, 0, out);
+}
+
+// The bind-pose meshes' extent along `direction` (unit), drawn metres.
+float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction, double scale) {
+  float lo = 1e30f, hi = -1e30f;
+  for (const motion::SkinnedMesh& mesh : asset.meshes) {
+    const size_t step = std::max<size_t>(1, mesh.positions.size() / kBoundsSamples);
+    for (size_t v = 0; v < mesh.positions.size(); v += step) {
+      const glm::vec3 p(mesh.mesh_to_world * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
+      lo = std::min(lo, glm::dot(p, direction));
+      hi = std::max(hi, glm::dot(p, direction));
+    }
+  }
+  return hi > lo ? (hi - lo) * static_cast<float>(scale) : 0.0f;
+}
+
+// Every transform in `world` moved into drawn metres.
+void applyScale(std::vector<glm::dmat4>& world, double scale) {
+  if (scale == 1.0) return;
+  glm::dmat4 display(scale);
+  display[3][3] = 1.0;
+  for (glm::dmat4& m : world) m = display * m;
 }
 
 void appendBones(const motion::Skeleton& skeleton, std::span<const glm::dmat4> world,
@@ -80,31 +130,65 @@ void growBounds(Scene& scene, const std::vector<CapsuleInstance>& capsules) {
 
 }  // namespace
 
+double displayScale(const motion::MotionAsset& asset, double* extent_out) {
+  double extent = restExtent(asset.skeleton);
+  for (const motion::SkinnedMesh& mesh : asset.meshes) {
+    glm::dvec3 lo(1e30), hi(-1e30);
+    const size_t step = std::max<size_t>(1, mesh.positions.size() / kBoundsSamples);
+    for (size_t v = 0; v < mesh.positions.size(); v += step) {
+      const glm::dvec3 q(mesh.mesh_to_world * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    if (!mesh.positions.empty()) extent = std::max({extent, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  }
+  if (extent_out != nullptr) *extent_out = extent;
+  return extent > kImplausibleCharacterSize_m ? 0.01 : 1.0;
+}
+
 Scene buildScene(const EditorState& state) {
   Scene scene;
+  scene.shadows = state.view.shadows;
   const motion::Clip* clip = state.clip();
   if (clip == nullptr) return scene;
-  const motion::Skeleton& skeleton = state.asset->skeleton;
+  const motion::MotionAsset& asset = *state.asset;
+  const motion::Skeleton& skeleton = asset.skeleton;
   const int joints = skeleton.jointCount();
-  const float height = characterHeight(skeleton);
+  scene.display_scale = displayScale(asset);
+  const double scale = scene.display_scale;
+  const float height = static_cast<float>(std::max(restExtent(skeleton) * scale, 0.1));
   const float radius = 0.022f * height;
 
-  // The original, between the two frames around the playback time (positions blended).
+  // The original at the playback time, between the two frames around it.
   const double frame = std::clamp(state.playback.time_s / clip->frame_time, 0.0,
                                   static_cast<double>(clip->frame_count - 1));
-  const int f0 = static_cast<int>(std::floor(frame));
-  const int f1 = std::min(f0 + 1, clip->frame_count - 1);
-  const double w = frame - f0;
-  std::vector<glm::dmat4> world0(static_cast<size_t>(joints)), world1(static_cast<size_t>(joints));
-  motion::worldTransforms(skeleton, *clip, f0, world0);
-  motion::worldTransforms(skeleton, *clip, f1, world1);
-  for (int j = 0; j < joints; ++j) {
-    for (int c = 0; c < 4; ++c) world0[j][c] = world0[j][c] * (1.0 - w) + world1[j][c] * w;
+  std::vector<glm::dmat4> world0(static_cast<size_t>(joints));
+  worldBetweenFrames(skeleton, *clip, frame, world0);
+  // The meshes skin with the transforms the capsules are placed by, so both show one pose.
+  const bool meshes = state.view.show_mesh && !asset.meshes.empty();
+  if (state.view.show_original && meshes) {
+    scene.asset = &asset;
+    for (size_t m = 0; m < asset.meshes.size(); ++m) {
+      const motion::SkinnedMesh& mesh = asset.meshes[m];
+      if (mesh.inverse_bind.size() != static_cast<size_t>(joints)) continue;
+      SkinnedDraw draw;
+      draw.mesh = static_cast<int>(m);
+      draw.skinning.resize(static_cast<size_t>(joints));
+      skinningMatrices(mesh, world0, scale, draw.skinning);
+      scene.skinned.push_back(std::move(draw));
+    }
   }
+  applyScale(world0, scale);
   scene.root = glm::vec3(world0[0][3]);
   if (state.view.show_original) {
-    appendBones(skeleton, world0, glm::vec3(0.0f), radius, state.view.show_end_sites,
-                state.selected_joint, nullptr, scene.opaque);
+    if (!meshes) {
+      appendBones(skeleton, world0, glm::vec3(0.0f), radius, state.view.show_end_sites,
+                  state.selected_joint, nullptr, scene.opaque);
+    } else if (state.view.show_skeleton) {
+      appendBones(skeleton, world0, glm::vec3(0.0f), radius * 0.6f, state.view.show_end_sites,
+                  state.selected_joint, nullptr, scene.xray);
+      for (CapsuleInstance& c : scene.xray) c.color.a = kXrayOpacity;
+    }
   }
 
   // The model at the same time (its phase origin is the analysed window's start).
@@ -122,6 +206,7 @@ Scene buildScene(const EditorState& state) {
                   pose.translations);
       std::vector<glm::dmat4> model_world(static_cast<size_t>(joints));
       motion::worldTransforms(skeleton, pose, 0, model_world);
+      applyScale(model_world, scale);
       // Beside: to the character's side, perpendicular to its travel on the ground.
       glm::vec3 offset(0.0f);
       if (state.view.model_beside) {
@@ -130,7 +215,11 @@ Scene buildScene(const EditorState& state) {
         if (glm::length(glm::dvec2(v.x, v.z)) > 1e-3) {
           side = glm::normalize(glm::vec3(static_cast<float>(v.z), 0.0f, static_cast<float>(-v.x)));
         }
-        offset = side * (0.45f * height);
+        // Clear of the mesh when the original is drawn as one (arms out, a tail): the model's
+        // skeleton is about as wide, so a full mesh width and a tenth apart.
+        float apart = 0.45f * height;
+        if (!scene.skinned.empty()) apart = std::max(apart, 1.1f * meshWidth(asset, side, scale));
+        offset = side * apart;
       }
       appendBones(skeleton, model_world, offset, radius, state.view.show_end_sites,
                   state.selected_joint, &kModelColor, scene.translucent);
@@ -166,6 +255,7 @@ Scene buildScene(const EditorState& state) {
       const double t = std::fmod(state.playback.time_s, duration);
       const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
       motion::worldTransforms(skeleton, run, f, run_world);
+      applyScale(run_world, scale);
       // Travel removed (the run stays beside the clip), height and falls kept.
       glm::vec3 offset = scene.root - glm::vec3(run_world[0][3]);
       offset.y = 0.0f;
@@ -192,8 +282,15 @@ Scene buildScene(const EditorState& state) {
   scene.bounds_max = glm::vec3(-1e30f);
   growBounds(scene, scene.opaque);
   growBounds(scene, scene.translucent);
+  growBounds(scene, scene.xray);
+  for (const SkinnedDraw& draw : scene.skinned) {
+    growSkinnedBounds(asset.meshes[static_cast<size_t>(draw.mesh)], draw.skinning, kBoundsSamples,
+                      scene.bounds_min, scene.bounds_max);
+  }
+  scene.translucent_casters = scene.translucent.size();
   scene.translucent.insert(scene.translucent.end(), population.begin(), population.end());
-  scene.empty = scene.opaque.empty() && scene.translucent.empty();
+  scene.empty = scene.opaque.empty() && scene.translucent.empty() && scene.skinned.empty() &&
+                scene.xray.empty();
   if (scene.empty) scene.bounds_min = scene.bounds_max = scene.root;
   return scene;
 }

@@ -1,10 +1,13 @@
 // What the viewport shows this frame, built from the editor state without touching OpenGL:
 // one capsule per bone (joint to parent, and joint to End Site) for the original clip and for the
-// reconstructed model, plus the bounds the camera frames and follows.
+// reconstructed model, the original's skinned meshes (glTF) with their skinning matrices, what
+// casts shadows, plus the bounds the camera frames and follows.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -27,10 +30,25 @@ struct PickBox {
   glm::vec3 lo{0.0f}, hi{0.0f};
 };
 
+// One skinned mesh of the original, posed at the playback time.
+struct SkinnedDraw {
+  int mesh = 0;                     // into the asset's meshes
+  std::vector<glm::mat4> skinning;  // (skeleton joints) bind pose -> world, metres, as drawn
+};
+
 struct Scene {
-  std::vector<CapsuleInstance> opaque;       // the original clip
-  std::vector<CapsuleInstance> translucent;  // the model, drawn after, blended
-  glm::vec3 bounds_min{0.0f};                // of everything drawn, metres
+  std::vector<CapsuleInstance> opaque;       // the original clip (when drawn as capsules)
+  std::vector<CapsuleInstance> translucent;  // the model, then the population: blended, after
+  size_t translucent_casters = 0;            // the first N translucent capsules (the model) cast
+                                             // shadows; the population's ghosts do not
+  std::vector<CapsuleInstance> xray;         // the original's skeleton over its mesh: drawn
+                                             // last, in front of everything, translucent
+  const motion::MotionAsset* asset = nullptr;  // whose meshes `skinned` poses (the state's;
+                                               // valid while the state keeps the asset)
+  std::vector<SkinnedDraw> skinned;          // the original as its skinned meshes
+  double display_scale = 1.0;                // drawn metres per file unit (see displayScale)
+  bool shadows = true;                       // the key light casts shadows (a view toggle)
+  glm::vec3 bounds_min{0.0f};                // of everything drawn but the population, metres
   glm::vec3 bounds_max{0.0f};
   glm::vec3 root{0.0f};                      // the original's root joint, metres (follow target)
   bool empty = true;
@@ -39,6 +57,15 @@ struct Scene {
 
 // The individual whose box the ray (from origin along unit direction) enters first, or -1.
 int pickIndividual(const Scene& scene, const glm::vec3& origin, const glm::vec3& direction);
+// A character over this size (rest pose with its meshes) is taken to be in centimetres and drawn
+// at 1/100: glTF is metres by specification, but exporters write centimetre rigs as they are (the
+// Khronos Fox measures 155 units from nose to tail). Metres.
+inline constexpr double kImplausibleCharacterSize_m = 10.0;
+
+// Drawn metres per file unit: 0.01 when the rig (joints and bind-pose meshes) is larger than
+// kImplausibleCharacterSize_m, else 1. `extent_out`, when given, receives the rig's largest
+// extent in file units.
+double displayScale(const motion::MotionAsset& asset, double* extent_out = nullptr);
 
 // The scene at the state's playback time.
 Scene buildScene(const EditorState& state);

@@ -3,14 +3,19 @@
 # (size 1600x900, many colours, the viewport not blank); `broken` opens a truncated BVH file and
 # checks that the editor still runs, exits 0 and names the file and line in its log; `evolve`
 # starts the search from the editor, waits for two generations and checks the log reports them
-# and the population is drawn (a green best run in the viewport).
-# and `bench` prints the editor's frame time with 16 characters while the search runs.
-# Usage: editor_screenshot_test.sh SINEW_BINARY WORK_DIR (screenshot|broken|evolve|bench)
-# Exit 77 (skipped) when xvfb-run is missing.
+# and the population is drawn (a green best run in the viewport); `fox` opens the shared Fox.glb
+# and checks its skinned mesh is drawn (its orange coat fills the viewport, and does not with
+# --no-mesh) and casts a shadow on the floor (dark floor pixels, none with --no-shadows).
+# `bench` prints the editor's frame time with 16 characters while the search runs and saves the
+# panels; `render` checks the frames of `sinew render`.
+# Usage: editor_screenshot_test.sh SINEW_BINARY WORK_DIR (screenshot|broken|evolve|bench|render|fox)
+#        [SHARED_DATA]
+# Exit 77 (skipped) when xvfb-run is missing, or (fox) when the shared data is.
 set -euo pipefail
 sinew="$1"
 work="$2"
 mode="$3"
+data="${SINEW_SHARED_DATA:-${4:-}}"
 if ! command -v xvfb-run >/dev/null 2>&1; then
   echo "SKIP: xvfb-run is not installed (apt-get install xvfb)"
   exit 77
@@ -164,6 +169,34 @@ for path in sys.argv[1:]:
         sys.exit(f"FAIL: {path} looks blank")
 print("render: 22 frames of 480x270, not blank")
 PY
+    ;;
+  fox)
+    fox="$data/gltf/Fox.glb"
+    if [ ! -f "$fox" ]; then
+      echo "SKIP: real test data not found at $data (the ../shared folder beside the checkout)"
+      exit 77
+    fi
+    pixels="$(dirname "$0")/png_pixels.py"
+    viewport=(372 0 1116 770)  # the 3D view of the 1600x900 window, less its borders
+    for run in mesh no-mesh no-shadows; do
+      flags=()
+      [ "$run" = mesh ] || flags=("--$run")
+      out="$work/fox_$run.log"
+      "${xvfb[@]}" "$sinew" edit "$fox" --animation Walk --screenshot "$work/fox_$run.png" \
+        --frames 10 "${flags[@]}" > "$out" 2>&1 || { cat "$out"; echo "FAIL: the editor exited non-zero"; exit 1; }
+      if grep -q 'error:' "$out"; then cat "$out"; echo "FAIL: errors in the log"; exit 1; fi
+      declare "orange_${run//-/_}=$(python3 "$pixels" "$work/fox_$run.png" orange "${viewport[@]}")"
+      declare "dark_${run//-/_}=$(python3 "$pixels" "$work/fox_$run.png" dark "${viewport[@]}")"
+    done
+    grep -E 'skinned mesh|1/100' "$work/fox_mesh.log"
+    echo "Fox: orange samples $orange_mesh (capsules only: $orange_no_mesh); dark floor samples" \
+         "$dark_mesh (shadows off: $dark_no_shadows)"
+    grep -q 'Fox.glb: 1 skinned mesh, 1,728 vertices' "$work/fox_mesh.log" \
+      || { echo "FAIL: the log does not report the Fox's mesh"; exit 1; }
+    [ "$orange_mesh" -ge 2000 ] || { echo "FAIL: the Fox's coat is not in the viewport"; exit 1; }
+    [ "$orange_no_mesh" -lt 1000 ] || { echo "FAIL: orange without the mesh: the check is blind"; exit 1; }
+    [ "$dark_mesh" -ge 1000 ] || { echo "FAIL: no shadow on the floor"; exit 1; }
+    [ "$dark_no_shadows" -lt 300 ] || { echo "FAIL: dark pixels without shadows: the check is blind"; exit 1; }
     ;;
   *)
     echo "unknown mode $mode"; exit 2 ;;

@@ -1,5 +1,6 @@
 // Timeline: play/pause, frame stepping, scrubbing in frames (seconds shown), speed, loop, and what
-// the viewport shows (original, reconstructed model, beside or overlaid, camera follow).
+// the viewport shows (original, reconstructed model, beside or overlaid, camera follow, shadows,
+// a glTF character's skinned mesh and its skeleton over it).
 #include <algorithm>
 #include <cmath>
 
@@ -41,13 +42,35 @@ void drawTimelinePanel(EditorState& state) {
   ImGui::SameLine();
   ImGui::Checkbox("Loop", &playback.loop);
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(140.0f);
+  ImGui::SetNextItemWidth(110.0f);
   float speed = static_cast<float>(playback.speed);
   if (ImGui::SliderFloat("Speed", &speed, 0.1f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic)) {
     playback.speed = speed;
   }
   ImGui::SameLine();
-  ImGui::Text("   %6.3f s / %.3f s", playback.time_s, clip->duration());
+  ImGui::Text(" %6.3f s / %.3f s", playback.time_s, clip->duration());
+  // How the character is drawn, on this row: the view toggles' row below is full.
+  ViewToggles& look = state.view;
+  ImGui::SameLine();
+  ImGui::TextDisabled("|");
+  ImGui::SameLine();
+  ImGui::Checkbox("Shadows", &look.shadows);
+  ImGui::SameLine();
+  const bool has_mesh = state.asset && !state.asset->meshes.empty();
+  ImGui::BeginDisabled(!has_mesh);
+  ImGui::Checkbox("Mesh", &look.show_mesh);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip(has_mesh ? "The glTF character's skinned mesh (off: capsules)"
+                               : "This file has no skinned mesh");
+  }
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!look.show_mesh);
+  ImGui::Checkbox("Skeleton", &look.show_skeleton);
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("The skeleton's capsules over the mesh, translucent");
+  }
+  ImGui::EndDisabled();
+  ImGui::EndDisabled();
 
   ImGui::SetNextItemWidth(-1.0f);
   char label[64];

@@ -1,0 +1,124 @@
+// The scene the viewport draws, built without a window: the display scale for centimetre rigs,
+// and a glTF character's skinned mesh posed exactly as its capsules are.
+#include <gtest/gtest.h>
+
+#include "editor/scene.h"
+#include "editor/skinning.h"
+#include "support/test_support.h"
+
+namespace sinew::editor {
+namespace {
+
+EditorState stateWith(const std::filesystem::path& path, const std::string& clip) {
+  EditorState state;
+  Result<motion::MotionAsset> asset = motion::importMotion(path);
+  EXPECT_TRUE(asset.ok()) << asset.message();
+  if (!asset.ok()) return state;
+  state.asset = std::move(asset).value();
+  state.clip_index = clip.empty() ? 0 : state.asset->findClip(clip);
+  EXPECT_GE(state.clip_index, 0);
+  state.view.show_model = false;  // no analysis here
+  return state;
+}
+
+TEST(EditorScene, NothingLoadedIsAnEmptySceneWithoutMeshes) {
+  const EditorState state;
+  const Scene scene = buildScene(state);
+  EXPECT_TRUE(scene.empty);
+  EXPECT_TRUE(scene.skinned.empty());
+  EXPECT_EQ(scene.asset, nullptr);
+}
+
+TEST(EditorScene, MetreRigsAreDrawnAsTheyAre) {
+  const EditorState walk = stateWith(test::sourceDir() / "assets" / "biped_walk.bvh", "");
+  ASSERT_TRUE(walk.asset);
+  double extent = 0.0;
+  EXPECT_EQ(displayScale(*walk.asset, &extent), 1.0);
+  EXPECT_GT(extent, 1.0);
+  EXPECT_LT(extent, 2.5);
+  const Scene scene = buildScene(walk);
+  EXPECT_TRUE(scene.skinned.empty());
+  EXPECT_FALSE(scene.opaque.empty());
+  EXPECT_GT(scene.bounds_max.y - scene.bounds_min.y, 1.4f);  // a person, in metres
+}
+
+TEST(EditorScene, FoxIsReadAsCentimetresAndDrawnAboutAMetreLong) {
+  SINEW_REQUIRE_SHARED_DATA();
+  EditorState fox = stateWith(test::sharedData() / "gltf" / "Fox.glb", "Walk");
+  ASSERT_TRUE(fox.asset);
+  double extent = 0.0;
+  EXPECT_EQ(displayScale(*fox.asset, &extent), 0.01);
+  EXPECT_NEAR(extent, 155.0, 1.0);  // units, nose to tail
+  const Scene scene = buildScene(fox);
+  ASSERT_EQ(scene.skinned.size(), 1u);
+  EXPECT_EQ(scene.asset, &*fox.asset);
+  EXPECT_TRUE(scene.opaque.empty());  // the mesh stands for the capsules
+  const glm::vec3 size = scene.bounds_max - scene.bounds_min;
+  std::cout << "Fox drawn: " << size.x << " x " << size.y << " x " << size.z << " m\n";
+  EXPECT_GT(std::max(size.x, size.z), 1.0f);
+  EXPECT_LT(std::max(size.x, size.z), 2.0f);
+  EXPECT_GT(size.y, 0.5f);
+  EXPECT_LT(size.y, 1.2f);
+  EXPECT_GT(scene.bounds_min.y, -0.05f);  // standing on the ground, not under it
+
+  fox.view.show_mesh = false;
+  const Scene capsules = buildScene(fox);
+  EXPECT_TRUE(capsules.skinned.empty());
+  EXPECT_FALSE(capsules.opaque.empty());
+  fox.view.show_mesh = true;
+  fox.view.show_skeleton = true;
+  const Scene both = buildScene(fox);
+  EXPECT_EQ(both.skinned.size(), 1u);
+  EXPECT_EQ(both.xray.size(), capsules.opaque.size());
+}
+
+// The mesh follows the capsules: at several playback times (between frames too), every vertex
+// bound to one joint keeps its bind-pose distance to that joint, the joint's position taken from
+// the capsules the same scene draws.
+TEST(EditorScene, FoxMeshFollowsTheCapsulesPose) {
+  SINEW_REQUIRE_SHARED_DATA();
+  EditorState fox = stateWith(test::sharedData() / "gltf" / "Fox.glb", "Walk");
+  ASSERT_TRUE(fox.asset);
+  fox.view.show_skeleton = true;
+  fox.view.show_end_sites = false;
+  const motion::Skeleton& skeleton = fox.asset->skeleton;
+  const motion::SkinnedMesh& mesh = fox.asset->meshes.at(0);
+  const std::vector<glm::dmat4> rest = motion::restWorldTransforms(skeleton);
+  double worst = 0.0;
+  int checked = 0;
+  for (double t : {0.0, 0.13, 0.29, 0.5}) {
+    fox.playback.time_s = t;
+    const Scene scene = buildScene(fox);
+    ASSERT_EQ(scene.skinned.size(), 1u);
+    // Joint positions from the capsules: the root's ball, then per joint the end `b` of the bone
+    // from its parent (bones of no length, here the rig's two top joints, have no capsule).
+    std::vector<glm::vec3> joint(static_cast<size_t>(skeleton.jointCount()), glm::vec3(NAN));
+    size_t capsule = 0;
+    for (int j = 0; j < skeleton.jointCount(); ++j) {
+      const int parent = skeleton.parents[j];
+      if (parent == motion::kNoParent) {
+        joint[j] = scene.xray.at(capsule++).a;
+      } else if (glm::length(glm::dvec3(rest[j][3]) - glm::dvec3(rest[parent][3])) * 0.01 > 1e-4) {
+        joint[j] = scene.xray.at(capsule++).b;
+      }
+    }
+    ASSERT_EQ(capsule, scene.xray.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      if (mesh.weights[v][0] < 0.999f) continue;
+      const int j = mesh.joints[v][0];
+      if (std::isnan(joint[j].x)) continue;
+      const glm::vec3 p = skinPoint(mesh, scene.skinned[0].skinning, v);
+      const double bind =
+          0.01 * glm::length(glm::dvec3(mesh.positions[v]) - glm::dvec3(rest[j][3]));
+      worst = std::max(worst, std::abs(glm::length(glm::dvec3(p - joint[j])) - bind));
+      ++checked;
+    }
+  }
+  std::cout << "Fox mesh against its capsules: " << checked << " vertex poses, worst "
+            << worst * 1000.0 << " mm\n";
+  EXPECT_GT(checked, 1000);
+  EXPECT_LT(worst, 1e-5);  // metres: float rounding only, between frames too
+}
+
+}  // namespace
+}  // namespace sinew::editor
