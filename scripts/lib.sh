@@ -46,7 +46,12 @@ install_node_tools() {
 build() {
   local dir="$SINEW_ROOT/$1"
   shift
-  cmake -S "$SINEW_ROOT" -B "$dir" -G Ninja "$@" >/dev/null
+  # ccache keyed on paths relative to the checkout, so another clone of the same sources (CI's)
+  # reuses this machine's cache.
+  export CCACHE_BASEDIR="$SINEW_ROOT" CCACHE_NOHASHDIR=true
+  local launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  cmake -S "$SINEW_ROOT" -B "$dir" -G Ninja "${launcher[@]}" "$@" >/dev/null
   echo "== building $dir"
   cmake --build "$dir" -j "$SINEW_JOBS"
 }
