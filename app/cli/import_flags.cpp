@@ -5,8 +5,8 @@
 namespace sinew::app {
 
 void ImportFlags::addTo(CLI::App& command) {
-  command.add_option("--units", units, "Length unit of a BVH file, overriding detection")
-      ->check(CLI::IsMember({"m", "cm", "mm", "in"}));
+  command.add_option("--units", units, "Length unit of a BVH file, overriding detection (cmu: the CMU database's 0.056444 m)")
+      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft", "cmu"}));
   command.add_option("--up", up, "Up axis of a BVH file, overriding detection")
       ->check(CLI::IsMember({"Y", "Z", "y", "z"}));
   command.add_option("--fps", fps, "Frame rate to resample to (default: the file's own; for glTF the keys' median spacing)")

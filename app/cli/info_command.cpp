@@ -75,6 +75,7 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
       {"units", motion::unitName(asset.detection.frame.unit)},
       {"up_axis", motion::upAxisName(asset.detection.frame.up)},
       {"height_file_units", asset.detection.height_in_file_units},
+      {"height_m", asset.detection.height_m},
       {"detection", asset.detection.reason},
       {"joints", joints},
       {"animations", clips},
@@ -112,7 +113,9 @@ void printText(const motion::MotionAsset& asset, int selected, std::ostream& out
         << std::defaultfloat;
   }
   out << "  units      " << motion::unitName(asset.detection.frame.unit) << ", up "
-      << motion::upAxisName(asset.detection.frame.up) << "  (" << asset.detection.reason << ")\n";
+      << motion::upAxisName(asset.detection.frame.up) << "  (" << asset.detection.reason << ")\n"
+      << "  height     " << std::fixed << std::setprecision(2) << asset.detection.height_m
+      << " m\n" << std::defaultfloat;
   if (asset.clips.size() > 1 || asset.gltf) {
     out << "  animations " << asset.clips.size() << '\n';
     for (const motion::Clip& clip : asset.clips) {

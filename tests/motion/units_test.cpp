@@ -6,8 +6,7 @@ namespace sinew::motion {
 namespace {
 
 TEST(UnitsTest, NamesRoundTripAndUnknownNamesAreRefused) {
-  for (LengthUnit unit : {LengthUnit::kMetres, LengthUnit::kCentimetres, LengthUnit::kMillimetres,
-                          LengthUnit::kInches}) {
+  for (LengthUnit unit : kAllLengthUnits) {
     EXPECT_EQ(unitFromName(unitName(unit)), unit);
   }
   EXPECT_FALSE(unitFromName("furlong"));
@@ -32,31 +31,6 @@ TEST(UnitsTest, ZUpCentimetresMapToYUpMetresAndBack) {
   EXPECT_NEAR(glm::length(glm::dvec3(glm::eulerAngles(frame.rotationFromEngine(mapped) *
                                                       glm::conjugate(about_z)))),
               0.0, 1e-12);
-}
-
-// A stick figure: feet at the bottom of the up axis, head on top, arms out.
-std::vector<glm::dvec3> figure(bool z_up, double scale) {
-  std::vector<glm::dvec3> points = {{0, 90, 0},  {10, 0, 5},  {-10, 0, 5},
-                                    {0, 170, 0}, {80, 140, 0}, {-80, 140, 0}};
-  for (glm::dvec3& p : points) {
-    p *= scale;
-    if (z_up) p = {p.x, -p.z, p.y};
-  }
-  return points;
-}
-
-TEST(UnitsTest, DetectsUpAxisAndUnitFromAPosedFigure) {
-  const std::vector<bool> leaf = {false, true, true, true, true, true};
-  FrameDetection y_cm = detectFrame(figure(false, 1.0), leaf, 0);
-  EXPECT_EQ(y_cm.frame.up, UpAxis::kY);
-  EXPECT_EQ(y_cm.frame.unit, LengthUnit::kCentimetres);
-  EXPECT_NEAR(y_cm.height_in_file_units, 170.0, 1e-9);
-  FrameDetection z_m = detectFrame(figure(true, 0.01), leaf, 0);
-  EXPECT_EQ(z_m.frame.up, UpAxis::kZ);
-  EXPECT_EQ(z_m.frame.unit, LengthUnit::kMetres);
-  EXPECT_FALSE(z_m.reason.empty());
-  FrameDetection mm = detectFrame(figure(false, 10.0), leaf, 0);
-  EXPECT_EQ(mm.frame.unit, LengthUnit::kMillimetres);
 }
 
 }  // namespace

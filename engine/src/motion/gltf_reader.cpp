@@ -663,7 +663,10 @@ Result<MotionAsset> importModel(const Model& model, const std::string& file,
     low = j == 0 ? rest[j][3].y : std::min(low, rest[j][3].y);
     high = j == 0 ? rest[j][3].y : std::max(high, rest[j][3].y);
   }
-  asset.detection = {skeleton.source, high - low, "glTF is metres, Y-up by specification"};
+  asset.detection.frame = skeleton.source;
+  asset.detection.height_in_file_units = high - low;
+  asset.detection.height_m = high - low;
+  asset.detection.reason = "glTF is metres, Y-up by specification";
 
   if (Status status =
           readMeshes(ctx, tree.value(), joint_of_node, skeleton.jointCount(), asset.meshes);

@@ -12,11 +12,16 @@
 
 namespace sinew::motion {
 
-enum class LengthUnit { kMetres, kCentimetres, kMillimetres, kInches };
+// kCmu: the CMU motion-capture database's length unit as its BVH conversions keep it,
+// (1 / 0.45) inch = 0.056444 m (its ASF files scale inches by 0.45).
+enum class LengthUnit { kMetres, kCentimetres, kMillimetres, kInches, kFeet, kCmu };
+inline constexpr LengthUnit kAllLengthUnits[] = {LengthUnit::kMetres,      LengthUnit::kCentimetres,
+                                                 LengthUnit::kMillimetres, LengthUnit::kInches,
+                                                 LengthUnit::kFeet,        LengthUnit::kCmu};
 enum class UpAxis { kY, kZ };
 
 double metresPerUnit(LengthUnit unit);
-std::string_view unitName(LengthUnit unit);  // "m", "cm", "mm", "in"
+std::string_view unitName(LengthUnit unit);  // "m", "cm", "mm", "in", "ft", "cmu"
 std::optional<LengthUnit> unitFromName(std::string_view name);
 std::string_view upAxisName(UpAxis up);  // "Y", "Z"
 std::optional<UpAxis> upAxisFromName(std::string_view name);
@@ -35,27 +40,12 @@ struct SourceFrame {
   glm::dquat rotationFromEngine(const glm::dquat& q) const;
 };
 
-// What detectFrame saw, for the report shown to the user.
+// What detectFrame (anatomy.h) saw, for the report shown to the user.
 struct FrameDetection {
   SourceFrame frame;
-  double height_in_file_units = 0.0;  // extent along the detected up axis, file units
+  double height_in_file_units = 0.0;  // extent of the figure along the detected up axis, file units
+  double height_m = 0.0;              // the same in metres with the chosen unit
   std::string reason;                 // one sentence: what decided it
 };
-
-}  // namespace sinew::motion
-
-#include <span>
-#include <vector>
-
-namespace sinew::motion {
-
-// Detects the up axis and length unit from points of a posed character in file units (the first
-// frame's pose, so a root rotation that stands a Z-up rest pose upright counts). `is_leaf` marks
-// chain ends (End Sites, or joints without children) and `centre` the pelvis (the first joint
-// that branches). On the true up axis several chain ends (the feet) share the lowest height and
-// the pelvis stands well above them. Height >= 1000 units reads as millimetres, >= 10 as
-// centimetres, else metres.
-FrameDetection detectFrame(std::span<const glm::dvec3> points, const std::vector<bool>& is_leaf,
-                           int centre);
 
 }  // namespace sinew::motion
