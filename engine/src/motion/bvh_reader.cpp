@@ -8,7 +8,6 @@
 #include <unordered_set>
 
 #include "sinew/motion/bvh.h"
-
 #include "sinew/motion/anatomy.h"
 
 namespace sinew::motion {
@@ -35,9 +34,7 @@ std::vector<Line> splitLines(std::string_view text) {
   return lines;
 }
 
-bool isSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\v' || c == '\f';
-}
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
 
 // Whitespace-separated words of one line; braces are words of their own even when attached.
 std::vector<std::string_view> words(std::string_view line) {
@@ -133,9 +130,7 @@ class BvhParser {
       }
     }
     size_t at = 0;
-    const auto next = [&]() -> const Token* {
-      return at < tokens_.size() ? &tokens_[at++] : nullptr;
-    };
+    const auto next = [&]() -> const Token* { return at < tokens_.size() ? &tokens_[at++] : nullptr; };
     const auto lastLine = [&]() { return lines_.empty() ? 1 : lines_.back().number; };
 
     const Token* first = next();
@@ -202,8 +197,7 @@ class BvhParser {
         skeleton_.offsets[current.joint] = offset;
         current.has_offset = true;
       } else if (word == "CHANNELS") {
-        if (current.has_channels)
-          return fail(line, "second CHANNELS in joint '" + joint_name + "'");
+        if (current.has_channels) return fail(line, "second CHANNELS in joint '" + joint_name + "'");
         if (Status status = readChannels(at, *token, current.joint); !status.ok()) return status;
         current.has_channels = true;
       } else if (word == "End") {
@@ -217,13 +211,12 @@ class BvhParser {
         }
         const Token* open = next();
         const Token* keyword = open ? next() : nullptr;
-        if (open == nullptr || open->word != "{" || keyword == nullptr ||
-            keyword->word != "OFFSET") {
+        if (open == nullptr || open->word != "{" || keyword == nullptr || keyword->word != "OFFSET") {
           return fail(line, "expected End Site { OFFSET x y z } in joint '" + joint_name + "'");
         }
         glm::dvec3 offset;
-        if (Status status =
-                readVector(at, *keyword, "End Site OFFSET of joint '" + joint_name + "'", offset);
+        if (Status status = readVector(at, *keyword, "End Site OFFSET of joint '" + joint_name + "'",
+                                       offset);
             !status.ok()) {
           return status;
         }
@@ -237,8 +230,8 @@ class BvhParser {
         skeleton_.end_sites[current.joint] = offset;
       } else if (word == "}") {
         if (!current.has_offset) {
-          return fail(line, "joint '" + joint_name + "' (line " +
-                                std::to_string(current.open_line) + ") has no OFFSET");
+          return fail(line, "joint '" + joint_name + "' (line " + std::to_string(current.open_line) +
+                                ") has no OFFSET");
         }
         stack.pop_back();
       } else {
@@ -259,12 +252,12 @@ class BvhParser {
   Status readVector(size_t& at, const Token& keyword, const std::string& what, glm::dvec3& out) {
     for (int n = 0; n < 3; ++n) {
       if (at >= tokens_.size() || tokens_[at].line_index != keyword.line_index) {
-        return fail(lineNumber(keyword),
-                    "expected 3 numbers for " + what + ", found " + std::to_string(n));
+        return fail(lineNumber(keyword), "expected 3 numbers for " + what + ", found " +
+                                             std::to_string(n));
       }
       if (!parseNumber(tokens_[at].word, out[n])) {
-        return fail(lineNumber(keyword),
-                    "expected a number for " + what + ", found " + quoted(tokens_[at].word));
+        return fail(lineNumber(keyword), "expected a number for " + what + ", found " +
+                                             quoted(tokens_[at].word));
       }
       ++at;
     }
@@ -291,8 +284,8 @@ class BvhParser {
                               joint_name + "', found " + quoted(tokens_[at].word));
       }
       if (seen[static_cast<int>(*type)]) {
-        return fail(line, std::string("channel ") + channelName(*type) +
-                              " appears twice in joint '" + joint_name + "'");
+        return fail(line, std::string("channel ") + channelName(*type) + " appears twice in joint '" +
+                              joint_name + "'");
       }
       seen[static_cast<int>(*type)] = true;
       layout.types.push_back(*type);
@@ -304,7 +297,8 @@ class BvhParser {
                             " channel names that follow, in joint '" + joint_name + "'");
     }
     if (layout.rotationCount() != 0 && layout.rotationCount() != 3) {
-      return fail(line, "joint '" + joint_name + "' has " + std::to_string(layout.rotationCount()) +
+      return fail(line, "joint '" + joint_name + "' has " +
+                            std::to_string(layout.rotationCount()) +
                             " rotation channels; expected 0 or 3");
     }
     skeleton_.channels[joint] = std::move(layout);
@@ -332,8 +326,8 @@ class BvhParser {
       return fail(lines_[l].number, "expected 'Frames: N' with a whole number N");
     }
     if (frames < 1) {
-      return fail(lines_[l].number,
-                  "zero frames: 'Frames:' must be at least 1, found " + quoted(w[1]));
+      return fail(lines_[l].number, "zero frames: 'Frames:' must be at least 1, found " +
+                                        quoted(w[1]));
     }
     if (frames > 1e8) return fail(lines_[l].number, "'Frames:' " + quoted(w[1]) + " is too large");
     frame_count_ = static_cast<int>(frames);
@@ -365,16 +359,17 @@ class BvhParser {
         while (n < text.size() && !isSpace(text[n])) ++n;
         const std::string_view word = text.substr(start, n - start);
         if (!any && frame == frame_count_) {
-          return fail(lines_[l].number,
-                      "more frame lines than 'Frames: " + std::to_string(frame_count_) +
-                          "' declares (line " + std::to_string(frames_line) + ")");
+          return fail(lines_[l].number, "more frame lines than 'Frames: " +
+                                            std::to_string(frame_count_) + "' declares (line " +
+                                            std::to_string(frames_line) + ")");
         }
         any = true;
         double value = 0.0;
         if (!parseNumber(word, value)) {
-          return fail(lines_[l].number, "frame " + std::to_string(frame + 1) + ": " + quoted(word) +
-                                            " is not a number (value " + std::to_string(count + 1) +
-                                            " of " + std::to_string(channel_count_) + ")");
+          return fail(lines_[l].number, "frame " + std::to_string(frame + 1) + ": " +
+                                            quoted(word) + " is not a number (value " +
+                                            std::to_string(count + 1) + " of " +
+                                            std::to_string(channel_count_) + ")");
         }
         if (static_cast<int>(count) < channel_count_) values_.push_back(value);
         ++count;
@@ -436,8 +431,7 @@ class BvhParser {
     asset.detection = detectFrame(skeleton_, clip);
     if (options.unit) {
       asset.detection.frame.unit = *options.unit;
-      asset.detection.height_m =
-          asset.detection.height_in_file_units * metresPerUnit(*options.unit);
+      asset.detection.height_m = asset.detection.height_in_file_units * metresPerUnit(*options.unit);
       asset.detection.reason = "unit set by the user; " + asset.detection.reason;
     }
     if (options.up) {
@@ -448,16 +442,14 @@ class BvhParser {
     skeleton_.source = frame;
     for (int j = 0; j < joints; ++j) {
       skeleton_.offsets[j] = frame.pointToEngine(skeleton_.offsets[j]);
-      if (skeleton_.end_sites[j])
-        skeleton_.end_sites[j] = frame.pointToEngine(*skeleton_.end_sites[j]);
+      if (skeleton_.end_sites[j]) skeleton_.end_sites[j] = frame.pointToEngine(*skeleton_.end_sites[j]);
     }
     for (size_t n = 0; n < clip.rotations.size(); ++n) {
       clip.translations[n] = frame.pointToEngine(clip.translations[n]);
       clip.rotations[n] = frame.rotationToEngine(clip.rotations[n]);
     }
     std::string stem(source_);
-    if (const size_t slash = stem.find_last_of('/'); slash != std::string::npos)
-      stem.erase(0, slash + 1);
+    if (const size_t slash = stem.find_last_of('/'); slash != std::string::npos) stem.erase(0, slash + 1);
     if (const size_t dot = stem.rfind('.'); dot != std::string::npos) stem.erase(dot);
     clip.name = stem;
     asset.skeleton = std::move(skeleton_);
