@@ -194,6 +194,129 @@ glm::dvec3 shapeInertia(const Shape& shape, double mass) {
   return glm::dvec3(0.0);
 }
 
+// Whether the rig's rest pose stands: in the upright rest pose every foot hangs below the pelvis
+// by at least 70% of its leg's length (the bones from the pelvis down to it). Bandai's rest pose
+// has every bone along its parent's X axis, legs sideways: no standing pose at all.
+bool restPoseStands(const motion::Skeleton& skeleton, std::span<const int> feet) {
+  if (feet.empty()) return true;
+  glm::dquat upright;
+  const std::vector<glm::dmat4> rest = uprightRest(skeleton, feet, upright);
+  const int pelvis = motion::pelvisJoint(skeleton);
+  for (int f : feet) {
+    double length = 0.0;
+    for (int j = f; j != pelvis && j != motion::kNoParent; j = skeleton.parents[j])
+      length += glm::length(skeleton.offsets[j]);
+    const double drop = rest[static_cast<size_t>(pelvis)][3].y - rest[static_cast<size_t>(f)][3].y;
+    if (drop < 0.7 * length) return false;
+  }
+  return true;
+}
+
+// The clip's mean pose: per joint, the normalised mean of its local rotations made continuous
+// (each on the first frame's side). For a walk or a run it stands: legs together, feet flat.
+std::vector<glm::dquat> meanPose(const motion::Clip& clip) {
+  std::vector<glm::dquat> mean(static_cast<size_t>(clip.joint_count), glm::dquat(0.0, 0.0, 0.0, 0.0));
+  for (int f = 0; f < clip.frame_count; ++f)
+    for (int j = 0; j < clip.joint_count; ++j) {
+      const glm::dquat q = clip.rotation(f, j);
+      glm::dquat& m = mean[static_cast<size_t>(j)];
+      const double sign = glm::dot(q, clip.rotation(0, j)) < 0.0 ? -1.0 : 1.0;
+      m = glm::dquat(m.w + sign * q.w, m.x + sign * q.x, m.y + sign * q.y, m.z + sign * q.z);
+    }
+  for (glm::dquat& m : mean) m = glm::normalize(m);
+  return mean;
+}
+
+// How a foot meets the ground in the clip, in the foot link's frame: the sole's normal (the
+// world's up as the foot sees it while it stands flat) and the ankle's height above the ground
+// then. The ground: the median over the frames of the lowest point of any foot (one foot is down
+// in nearly every frame of a walk; a toe that dips through the floor at toe-off moves a median
+// little). Flat: the frames where the ankle is lowest (its lowest 15%, mid-stance, after the heel
+// strike and before the toe-off).
+struct SoleFit {
+  bool ok = false;
+  glm::dvec3 up{0.0, 1.0, 0.0};  // unit, foot link frame
+  double depth = 0.0;            // ankle above the ground while flat, metres
+  int frames = 0;                // flat frames the fit used
+};
+
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const size_t k = std::min(values.size() - 1, static_cast<size_t>(q * static_cast<double>(values.size())));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+std::vector<SoleFit> fitSoles(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                              std::span<const int> feet,
+                              const std::vector<std::vector<glm::dvec3>>& local_points) {
+  const int n = skeleton.jointCount();
+  const int samples = std::min(clip.frame_count, 600);
+  std::vector<glm::dmat4> world(static_cast<size_t>(n));
+  // (feet x samples) the foot's transform; (samples) the lowest point of any foot.
+  std::vector<std::vector<glm::dmat4>> foot(feet.size(), std::vector<glm::dmat4>(samples));
+  std::vector<double> lowest(samples, std::numeric_limits<double>::max());
+  for (int s = 0; s < samples; ++s) {
+    const int f = samples > 1 ? static_cast<int>(static_cast<long long>(s) * (clip.frame_count - 1) /
+                                                 (samples - 1))
+                              : 0;
+    motion::worldTransforms(skeleton, clip, f, world);
+    for (size_t k = 0; k < feet.size(); ++k) {
+      const glm::dmat4& m = world[static_cast<size_t>(feet[k])];
+      foot[k][s] = m;
+      lowest[s] = std::min(lowest[s], m[3].y);
+      for (const glm::dvec3& p : local_points[k]) lowest[s] = std::min(lowest[s], (m * glm::dvec4(p, 1.0)).y);
+    }
+  }
+  const double ground = quantile(lowest, 0.5);
+  std::vector<SoleFit> fits(feet.size());
+  for (size_t k = 0; k < feet.size(); ++k) {
+    std::vector<double> ankle(samples);
+    for (int s = 0; s < samples; ++s) ankle[s] = foot[k][s][3].y;
+    const double flat = quantile(ankle, 0.15);
+    glm::dvec3 up(0.0);
+    std::vector<double> depths;
+    for (int s = 0; s < samples; ++s) {
+      if (ankle[s] > flat) continue;
+      up += glm::inverse(glm::dmat3(foot[k][s])) * kUp;
+      depths.push_back(ankle[s] - ground);
+    }
+    if (depths.empty() || glm::length(up) < 1e-9) continue;
+    fits[k] = {true, glm::normalize(up), quantile(depths, 0.5), static_cast<int>(depths.size())};
+  }
+  return fits;
+}
+
+// A foot's box in its link frame, its sole on the plane `depth` below the pivot across `up`:
+// forward to the foot's farthest point (a toe joint without an End Site of any length is the
+// ball of the foot: the toes reach 40% further), back to a heel of 1.5 radii behind the ankle.
+Shape soleBox(const SoleFit& fit, std::span<const glm::dvec3> points, bool bare_tip, double radius) {
+  const glm::dvec3 up = fit.up;
+  glm::dvec3 forward(0.0);
+  double far = 0.0;
+  for (const glm::dvec3& p : points) {
+    const glm::dvec3 flat = p - glm::dot(p, up) * up;
+    if (glm::length(flat) > far) far = glm::length(flat), forward = flat;
+  }
+  if (far < 1e-6) {  // no toe to say where forward is: across the foot's first local axis
+    forward = glm::dvec3(0.0, 0.0, 1.0) - up.z * up;
+    if (glm::length(forward) < 1e-6) forward = glm::dvec3(1.0, 0.0, 0.0) - up.x * up;
+    far = 4.0 * radius;
+  }
+  forward = glm::normalize(forward);
+  if (bare_tip) far *= 1.4;
+  const double heel = 1.5 * radius;
+  const double depth = std::max(fit.depth, 0.5 * radius);  // the box spans sole to ankle
+  Shape shape;
+  shape.type = ShapeType::kBox;
+  shape.radius = radius;
+  shape.half_extents = glm::dvec3(radius, 0.5 * depth, 0.5 * (far + heel));
+  shape.center = forward * (0.5 * (far - heel)) - up * (0.5 * depth);
+  const glm::dvec3 side = glm::normalize(glm::cross(up, forward));
+  shape.rotation = glm::normalize(glm::quat_cast(glm::dmat3(side, up, forward)));
+  return shape;
+}
+
 }  // namespace
 
 const char* jointTypeName(JointType type) {
@@ -588,6 +711,39 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     if (link.foot) foot_joints.push_back(link.joint);
   glm::dquat upright;
   const std::vector<glm::dmat4> rest_up = uprightRest(skeleton, foot_joints, upright);
+  if (observed_motion != nullptr && !restPoseStands(skeleton, foot_joints)) {
+    plan.standing_rotations = meanPose(clip);
+    plan.notes.push_back("the rest pose does not stand (feet not below the pelvis); standing is "
+                         "the clip's mean pose");
+  }
+  // Soles from the clip's own feet (where it stands flat), when there is a clip.
+  std::vector<std::vector<glm::dvec3>> foot_points;  // (feet) in the foot link's frame
+  std::vector<char> bare_tip;                         // (feet) no End Site gives the toes a length
+  for (const Link& link : plan.links) {
+    if (!link.foot) continue;
+    const int li = plan.link_of_joint[link.joint];
+    const glm::dmat4 to_link = glm::inverse(world[link.joint]);
+    std::vector<glm::dvec3> points;
+    bool bare = true;
+    for (int j = link.joint; j < n; ++j) {
+      const int owner = plan.link_of_joint[j];
+      const bool child_pivot =
+          owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
+      if ((owner == li && j != link.joint) || child_pivot)
+        points.push_back(transformPoint(to_link, glm::dvec3(world[j][3])));
+      if (owner == li && skeleton.end_sites[j]) {
+        points.push_back(transformPoint(to_link, transformPoint(world[j], *skeleton.end_sites[j])));
+        bare = bare && glm::length(*skeleton.end_sites[j]) < 1e-6;
+      }
+    }
+    foot_points.push_back(std::move(points));
+    bare_tip.push_back(bare ? 1 : 0);
+  }
+  const std::vector<SoleFit> soles =
+      observed_motion != nullptr
+          ? fitSoles(skeleton, clip, foot_joints, foot_points)
+          : std::vector<SoleFit>(foot_joints.size());
+  int foot_index = -1;
   for (int li = 0; li < link_count; ++li) {
     Link& link = plan.links[li];
     const glm::dmat4 to_link = glm::inverse(world[link.joint]);
@@ -604,8 +760,12 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     const double radius = segmentRadius(settings, link.segment) * plan.size_m;
     Shape shape;
     shape.radius = radius;
-    if (link.foot) {
-      // The sole is level when the foot stands at rest: a box measured in the upright rest pose
+    if (link.foot) ++foot_index;
+    if (link.foot && soles[static_cast<size_t>(foot_index)].ok) {
+      shape = soleBox(soles[static_cast<size_t>(foot_index)], foot_points[static_cast<size_t>(foot_index)],
+                      bare_tip[static_cast<size_t>(foot_index)] != 0, radius);
+    } else if (link.foot) {
+      // Without a clip: the sole is level when the foot stands at rest: a box measured in the upright rest pose
       // (both feet alike, whatever the clip's first frame does with them), then carried into the
       // first pose's link frame.
       std::vector<glm::dvec3> sole_points;
@@ -794,6 +954,8 @@ LinkPose standingPose(const BodyPlan& plan, const motion::Skeleton& skeleton) {
   std::vector<int> feet;
   for (const Link& link : plan.links)
     if (link.foot) feet.push_back(link.joint);
+  if (!plan.standing_rotations.empty())  // already upright: the clip's own attitudes
+    return linkPoseFromSkeleton(plan, skeleton, plan.standing_rotations, skeleton.offsets);
   glm::dquat upright;
   uprightRest(skeleton, feet, upright);
   LinkPose pose = linkPoseFromSkeleton(plan, skeleton, skeleton.rest_rotations, skeleton.offsets);

@@ -149,6 +149,10 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     report.com.push_back(world.centreOfMass());
   };
 
+  // Uprightness is the pelvis's up against the world's, "up" being what the motion itself holds
+  // up at its start (a rig's pelvis axes are its own: Bandai's local Y lies 92 degrees off).
+  const glm::dvec3 pelvis_up =
+      glm::normalize(glm::inverse(state.pose.base_rotation) * glm::dvec3(0.0, 1.0, 0.0));
   const glm::dvec3 start = world.centreOfMass();
   const double start_height = start.y - world.groundHeight(start.x, start.z);
   const long long steps = std::llround(settings.seconds / world.dt());
@@ -225,7 +229,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
       was_down[f] = down ? 1 : 0;
     }
     const glm::dvec3 com = world.centreOfMass();
-    const glm::dvec3 up = glm::dmat3(transforms[0]) * glm::dvec3(0.0, 1.0, 0.0);
+    const glm::dvec3 up = glm::dmat3(transforms[0]) * pelvis_up;
     report.min_uprightness = std::min(report.min_uprightness, up.y);
     if (!report.fell) {
       for (size_t li = 0; li < n; ++li)

@@ -132,6 +132,9 @@ struct BodyPlan {
                                    // the base)
   std::vector<glm::dquat> frozen_rotations;  // (skeleton joints) the local rotation merged and
                                              // fixed joints hold: the clip's first frame, or rest
+  std::vector<glm::dquat> standing_rotations;  // (skeleton joints) the local rotations of the
+                                              // standing pose when the rest pose does not stand
+                                              // (the clip's mean pose); empty: the rest pose
   std::vector<int> base_chain;  // skeleton joints from the root down to the base joint (a root at
                                 // the origin above the pelvis carries no body), root first
   double total_mass_kg = 0.0;   // sum of link masses
@@ -167,7 +170,8 @@ LinkPose linkPoseFromSkeleton(const BodyPlan& plan, const motion::Skeleton& skel
                               std::span<const glm::dvec3> translations);
 
 // The character standing: the rig's rest pose (every joint at its rest rotation; a T-pose for BVH
-// rigs), turned upright (feet below the pelvis) if the rig stores it lying down. The plan's soles
+// rigs), turned upright (feet below the pelvis) if the rig stores it lying down; or, for a rig
+// whose rest pose does not stand (BodyPlan::standing_rotations), the clip's mean pose. The plan's soles
 // are level in this pose. The pose the standing tests hold; a simulation starts from it when it
 // does not start from the clip.
 LinkPose standingPose(const BodyPlan& plan, const motion::Skeleton& skeleton);

@@ -68,7 +68,8 @@ struct SimulationReport {
                                    // feedback; or SimulationSettings::reference's), radians
   double energy_j = 0.0;           // mechanical work of the joint torques, integral of sum |tau w|
   double torque_sq_per_kg = 0.0;   // integral of sum tau^2 dt / mass, N^2 m^2 s / kg
-  double min_uprightness = 1.0;    // lowest cosine between the pelvis's up and the world's up
+  double min_uprightness = 1.0;    // lowest cosine between the pelvis's up (the direction the
+                                   // target's first pose holds up) and the world's up
   double mass_kg = 0.0;
   glm::dvec3 pushed_impulse_ns{0.0};  // the pushes delivered
   std::vector<std::string> feet;      // foot link names
