@@ -81,7 +81,8 @@ std::string termsLine(const search::FitnessTerms& t) {
                 "energy %.2f) up %.1f s, %.1f m",
                 t.total, t.fall, t.tracking, t.speed, t.heading, t.placement, t.upright, t.energy,
                 t.survived_s, t.distance_m);
-  return line;
+  return t.fell && !t.fall_reason.empty() ? std::string(line) + " (fell: " + t.fall_reason + ")"
+                                          : std::string(line);
 }
 
 int runEvolve(EvolveArgs args) {

@@ -14,7 +14,8 @@ std::string termsLine(const search::FitnessTerms& t) {
   std::snprintf(line, sizeof line,
                 "cost %.2f (fall %.1f, tracking %.2f, speed %.2f), up %.1f s, %.1f m", t.total,
                 t.fall, t.tracking, t.speed, t.survived_s, t.distance_m);
-  return line;
+  return t.fell && !t.fall_reason.empty() ? std::string(line) + " (fell: " + t.fall_reason + ")"
+                                          : std::string(line);
 }
 
 }  // namespace

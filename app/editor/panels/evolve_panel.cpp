@@ -192,6 +192,7 @@ void drawEvolvePanel(EditorState& state) {
       ImGui::Text("%s: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", show_picked ? "it" : "best",
                   t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s,
                   t.total);
+      if (t.fell && !t.fall_reason.empty()) ImGui::TextWrapped("why it fell: %s", t.fall_reason.c_str());
       if (ImGui::BeginTable("terms", search::kFitnessTermCount,
                             ImGuiTableFlags_SizingStretchSame)) {
         for (int k = 0; k < search::kFitnessTermCount; ++k)

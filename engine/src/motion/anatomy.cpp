@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <cctype>
 #include <sstream>
+#include <string>
 
 namespace sinew::motion {
 namespace {
@@ -230,6 +232,551 @@ FrameDetection detectFrame(const Skeleton& skeleton, const Clip& clip,
          << lo << "-" << hi << " m (override with --units and --up)";
   result.reason = reason.str();
   return result;
+}
+
+}  // namespace sinew::motion
+
+// ---------------------------------------------------------------- feet and segments, by names
+// and by geometry (moved here from spectral/indirect.cpp: anatomy has one owner)
+
+namespace sinew::motion {
+namespace {
+
+constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
+
+// A chain end lies "on the ground" in the first frame when it is within this fraction of the
+// figure's height of the lowest chain end: a standing dog's four paws, not a biped's hands.
+constexpr double kGroundBand = 0.1;
+// Chain ends closer than this fraction of the figure's height (along the bones) to the joint
+// where they branch are one foot (toes of one paw), not two.
+constexpr double kOneFootReach = 0.15;
+// Below this horizontal speed of the centre of mass the clip runs in place, and the figure's
+// facing replaces the travel direction, m/s.
+constexpr double kInPlaceSpeed = 0.1;
+
+// ---------------------------------------------------------------- names
+
+// Lower-case words of a joint name: split at '_', '.', '-', ':', spaces, digits and camelCase
+// boundaries, so "LeftUpLeg" -> left up leg, "CC_Base_L_Foot" -> cc base l foot, "LThumb" ->
+// l thumb.
+std::vector<std::string> words(const std::string& name) {
+  std::vector<std::string> out;
+  std::string word;
+  const auto flush = [&] {
+    if (!word.empty()) out.push_back(word);
+    word.clear();
+  };
+  for (size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    if (!std::isalpha(c)) {
+      flush();
+      continue;
+    }
+    const bool upper = std::isupper(c) != 0;
+    const bool prev_lower = i > 0 && std::islower(static_cast<unsigned char>(name[i - 1])) != 0;
+    const bool prev_upper = i > 0 && std::isupper(static_cast<unsigned char>(name[i - 1])) != 0;
+    const bool next_lower =
+        i + 1 < name.size() && std::islower(static_cast<unsigned char>(name[i + 1])) != 0;
+    if (upper && (prev_lower || (prev_upper && next_lower))) flush();
+    word.push_back(static_cast<char>(std::tolower(c)));
+  }
+  flush();
+  return out;
+}
+
+bool nameHas(const std::string& name, std::initializer_list<const char*> parts) {
+  std::string lower(name);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return std::any_of(parts.begin(), parts.end(),
+                     [&](const char* part) { return lower.find(part) != std::string::npos; });
+}
+
+bool isFootName(const std::string& name) {
+  return nameHas(name, {"foot", "ankle", "toe", "paw", "hoof"});
+}
+bool isHandName(const std::string& name) {
+  return nameHas(name, {"hand", "wrist"});
+}
+bool isHeadName(const std::string& name) {
+  return nameHas(name, {"head", "skull"});
+}
+bool isNeckName(const std::string& name) {
+  return nameHas(name, {"neck"});
+}
+bool isTrunkName(const std::string& name) {
+  return nameHas(name, {"spine", "chest", "torso", "waist", "abdomen", "belly", "pelvis", "hip",
+                        "back", "rib", "breast", "clavicle", "collar", "shoulder"});
+}
+
+Side sideFromName(const std::string& name) {
+  for (const std::string& word : words(name)) {
+    if (word == "l" || word == "left") return Side::kLeft;
+    if (word == "r" || word == "right") return Side::kRight;
+  }
+  return Side::kUnknown;
+}
+
+// ---------------------------------------------------------------- skeleton
+
+bool isAncestor(const Skeleton& skeleton, int ancestor, int joint) {
+  for (int j = skeleton.parents[joint]; j != kNoParent; j = skeleton.parents[j]) {
+    if (j == ancestor) return true;
+  }
+  return false;
+}
+
+bool inSubtree(const Skeleton& skeleton, int root, int joint) {
+  return joint == root || isAncestor(skeleton, root, joint);
+}
+
+std::vector<int> childCounts(const Skeleton& skeleton) {
+  std::vector<int> counts(skeleton.jointCount(), 0);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (skeleton.parents[j] != kNoParent) ++counts[skeleton.parents[j]];
+  }
+  return counts;
+}
+
+int lowestCommonAncestor(const Skeleton& skeleton, int a, int b) {
+  for (int j = a; j != kNoParent; j = skeleton.parents[j]) {
+    if (inSubtree(skeleton, j, b)) return j;
+  }
+  return kNoParent;
+}
+
+// Length along the bones from `ancestor` down to `joint`, metres.
+double boneLength(const Skeleton& skeleton, int ancestor, int joint) {
+  double length = 0.0;
+  for (int j = joint; j != ancestor && j != kNoParent; j = skeleton.parents[j]) {
+    length += glm::length(skeleton.offsets[j]);
+  }
+  return length;
+}
+
+// World positions of every joint and End Site, frame by frame.
+struct Poses {
+  int joints = 0;
+  std::vector<glm::dvec3> joint;  // (frames x joints) metres
+  std::vector<glm::dvec3> site;   // (frames x joints) End Site, or the joint when it has none
+
+  const glm::dvec3& at(int frame, const FootPoint& p) const {
+    const size_t n = static_cast<size_t>(frame) * joints + p.joint;
+    return p.end_site ? site[n] : joint[n];
+  }
+};
+
+Poses computePoses(const Skeleton& skeleton, const Clip& clip, int frames) {
+  Poses poses;
+  poses.joints = skeleton.jointCount();
+  std::vector<glm::dmat4> world(poses.joints);
+  for (int f = 0; f < frames; ++f) {
+    worldTransforms(skeleton, clip, f, world);
+    for (int j = 0; j < poses.joints; ++j) {
+      poses.joint.emplace_back(world[j][3]);
+      poses.site.push_back(skeleton.end_sites[j]
+                               ? glm::dvec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0))
+                               : glm::dvec3(world[j][3]));
+    }
+  }
+  return poses;
+}
+
+glm::dvec3 horizontal(const glm::dvec3& v) {
+  return {v.x, 0.0, v.z};
+}
+
+// The figure's left for a travel direction (Y up): up x forward.
+glm::dvec3 leftOf(const glm::dvec3& forward) {
+  return glm::cross(kUp, forward);
+}
+
+// ---------------------------------------------------------------- feet
+
+std::vector<FootPoint> footPoints(const Skeleton& skeleton, int foot) {
+  std::vector<FootPoint> points;
+  for (int j = foot; j < skeleton.jointCount(); ++j) {
+    if (!inSubtree(skeleton, foot, j)) continue;
+    points.push_back({j, false});
+    if (skeleton.end_sites[j]) points.push_back({j, true});
+  }
+  return points;
+}
+
+// Uppermost joints named like feet, one per chain, below the root.
+std::vector<int> namedFeet(const Skeleton& skeleton) {
+  std::vector<int> feet;
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (skeleton.parents[j] == kNoParent || !isFootName(skeleton.names[j])) continue;
+    bool below_another = false;
+    for (int a = skeleton.parents[j]; a != kNoParent; a = skeleton.parents[a]) {
+      below_another = below_another || isFootName(skeleton.names[a]);
+    }
+    if (!below_another) feet.push_back(j);
+  }
+  return feet;
+}
+
+// Chain ends on the ground in the first frame that no named foot covers, grouped into feet:
+// the joint owning each such End Site (a leaf joint's parent), merged with neighbours that
+// branch within a foot's reach.
+std::vector<int> groundedFeet(const Skeleton& skeleton, const Poses& first,
+                              const std::vector<int>& named) {
+  const int joints = skeleton.jointCount();
+  const std::vector<int> counts = childCounts(skeleton);
+  const int pelvis = pelvisJoint(skeleton);
+  if (counts[pelvis] < 2) return {};  // a single chain has no legs
+  double low = 1e300;
+  double high = -1e300;
+  struct End {
+    int owner;
+    double height;
+  };
+  std::vector<End> ends;
+  for (int j = 0; j < joints; ++j) {
+    high = std::max({high, first.joint[j].y, first.site[j].y});
+    const bool leaf = counts[j] == 0;
+    if (!skeleton.end_sites[j] && !leaf) continue;
+    const int owner = skeleton.end_sites[j] ? j : skeleton.parents[j];
+    if (owner == kNoParent || !isAncestor(skeleton, pelvis, owner)) continue;
+    const double height = skeleton.end_sites[j] ? first.site[j].y : first.joint[j].y;
+    low = std::min(low, height);
+    ends.push_back({owner, height});
+  }
+  const double figure = high - low;
+  std::vector<int> feet;
+  for (const End& end : ends) {
+    if (end.height - low > kGroundBand * figure) continue;
+    if (std::any_of(named.begin(), named.end(),
+                    [&](int foot) { return inSubtree(skeleton, foot, end.owner); })) {
+      continue;
+    }
+    int foot = end.owner;
+    for (int& other : feet) {
+      const int common = lowestCommonAncestor(skeleton, foot, other);
+      if (common == kNoParent || common == pelvis || isAncestor(skeleton, common, pelvis)) {
+        continue;
+      }
+      const double reach = kOneFootReach * figure;
+      if (boneLength(skeleton, common, foot) < reach &&
+          boneLength(skeleton, common, other) < reach) {
+        other = common;
+        foot = -1;
+        break;
+      }
+    }
+    if (foot >= 0) feet.push_back(foot);
+  }
+  std::sort(feet.begin(), feet.end());
+  feet.erase(std::unique(feet.begin(), feet.end()), feet.end());
+  return feet;
+}
+
+// The horizontal travel of the pelvis over the clip, or +Z when it stays in place.
+glm::dvec3 clipForward(const Skeleton& skeleton, const Clip& clip) {
+  const int pelvis = pelvisJoint(skeleton);
+  const glm::dvec3 travel =
+      horizontal(worldPositions(skeleton, clip, clip.frame_count - 1)[pelvis] -
+                 worldPositions(skeleton, clip, 0)[pelvis]);
+  return glm::length(travel) > 0.1 ? glm::normalize(travel) : glm::dvec3(0.0, 0.0, 1.0);
+}
+
+}  // namespace
+
+const char* sideName(Side side) {
+  switch (side) {
+    case Side::kLeft:
+      return "left";
+    case Side::kRight:
+      return "right";
+    case Side::kUnknown:
+      break;
+  }
+  return "unknown";
+}
+
+const char* segmentName(Segment segment) {
+  switch (segment) {
+    case Segment::kNone:
+      return "none";
+    case Segment::kHead:
+      return "head";
+    case Segment::kTrunk:
+      return "trunk";
+    case Segment::kUpperArm:
+      return "upper arm";
+    case Segment::kForearm:
+      return "forearm";
+    case Segment::kHand:
+      return "hand";
+    case Segment::kThigh:
+      return "thigh";
+    case Segment::kShank:
+      return "shank";
+    case Segment::kFoot:
+      return "foot";
+    case Segment::kOther:
+      return "other";
+  }
+  return "none";
+}
+
+Result<std::vector<Foot>> findFeet(const Skeleton& skeleton, const Clip& clip) {
+  if (Status status = clip.validate(skeleton); !status.ok()) return status;
+  const Poses first = computePoses(skeleton, clip, 1);
+  const std::vector<int> named = namedFeet(skeleton);
+  const std::vector<int> grounded = groundedFeet(skeleton, first, named);
+  std::vector<Foot> feet;
+  for (int joint : named) feet.push_back({joint, Side::kUnknown, true, -1, {}});
+  for (int joint : grounded) feet.push_back({joint, Side::kUnknown, false, -1, {}});
+  if (feet.empty()) {
+    return Status::error(
+        "no feet found: no joint is named foot, ankle, toe, paw or hoof, and no "
+        "chain end below the pelvis is on the ground in the first frame");
+  }
+  std::sort(feet.begin(), feet.end(),
+            [](const Foot& a, const Foot& b) { return a.joint < b.joint; });
+
+  // Sides from the names of the foot and the joints above it, else from where it stands.
+  const glm::dvec3 left = leftOf(clipForward(skeleton, clip));
+  const glm::dvec3 pelvis = first.joint[pelvisJoint(skeleton)];
+  for (Foot& foot : feet) {
+    foot.points = footPoints(skeleton, foot.joint);
+    for (int j = foot.joint; j != kNoParent && foot.side == Side::kUnknown;
+         j = skeleton.parents[j]) {
+      foot.side = sideFromName(skeleton.names[j]);
+    }
+    if (foot.side == Side::kUnknown) {
+      const double across = glm::dot(first.joint[foot.joint] - pelvis, left);
+      if (std::abs(across) > 0.01) foot.side = across > 0.0 ? Side::kLeft : Side::kRight;
+    }
+  }
+  // Pairs: each left foot with the right foot nearest along the travel direction (front with
+  // front, hind with hind).
+  const glm::dvec3 forward = glm::cross(left, kUp);
+  for (size_t a = 0; a < feet.size(); ++a) {
+    if (feet[a].side != Side::kLeft) continue;
+    int best = -1;
+    double best_gap = 1e300;
+    for (size_t b = 0; b < feet.size(); ++b) {
+      if (feet[b].side != Side::kRight || feet[b].pair >= 0) continue;
+      const double gap =
+          std::abs(glm::dot(first.joint[feet[a].joint] - first.joint[feet[b].joint], forward));
+      if (gap < best_gap) {
+        best_gap = gap;
+        best = static_cast<int>(b);
+      }
+    }
+    if (best >= 0) {
+      feet[a].pair = best;
+      feet[best].pair = static_cast<int>(a);
+    }
+  }
+  return feet;
+}
+
+
+Status SegmentMassTable::validate() const {
+  const std::pair<const char*, double> fields[] = {
+      {"head", head}, {"trunk", trunk}, {"upper_arm", upper_arm}, {"forearm", forearm},
+      {"hand", hand}, {"thigh", thigh}, {"shank", shank},         {"foot", foot}};
+  double sum = 0.0;
+  for (const auto& [name, value] : fields) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      return Status::error(std::string("masses.") + name + " must be a finite fraction >= 0");
+    }
+    sum += value;
+  }
+  if (!(sum > 0.0)) return Status::error("masses: the segment fractions sum to 0");
+  return {};
+}
+
+
+// ---------------------------------------------------------------- masses
+
+MassDistribution massDistribution(const Skeleton& skeleton, const std::vector<Foot>& feet,
+                                  const SegmentMassTable& table) {
+  const int joints = skeleton.jointCount();
+  const int pelvis = pelvisJoint(skeleton);
+  std::vector<Segment> segment(joints, Segment::kNone);
+  std::vector<int> group(joints, -1);  // joints sharing one segment's mass
+  std::vector<bool> massless(joints, false);
+  for (int j = skeleton.parents[pelvis]; j != kNoParent; j = skeleton.parents[j]) {
+    massless[j] = true;
+  }
+  const auto unassigned = [&](int j) {
+    return j != kNoParent && j != pelvis && !massless[j] && segment[j] == Segment::kNone;
+  };
+  const auto assign = [&](int j, Segment s, int g) {
+    if (unassigned(j)) {
+      segment[j] = s;
+      group[j] = g;
+    }
+  };
+  const auto assignSubtree = [&](int root, Segment s) {
+    for (int j = root; j < joints; ++j) {
+      if (inSubtree(skeleton, root, j)) assign(j, s, root);
+    }
+  };
+  // A limb: its end's subtree, the bone above it, the one above that.
+  const auto assignLimb = [&](int end, Segment tip, Segment middle, Segment top) {
+    assignSubtree(end, tip);
+    const int p = skeleton.parents[end];
+    if (p == kNoParent) return;
+    assign(p, middle, p);
+    assign(skeleton.parents[p], top, skeleton.parents[p]);
+  };
+  for (const Foot& foot : feet)
+    assignLimb(foot.joint, Segment::kFoot, Segment::kShank, Segment::kThigh);
+  for (int j = 0; j < joints; ++j) {
+    if (!unassigned(j) || !isHandName(skeleton.names[j])) continue;
+    bool below_hand = false;
+    for (int a = skeleton.parents[j]; a != kNoParent; a = skeleton.parents[a]) {
+      below_hand = below_hand || isHandName(skeleton.names[a]);
+    }
+    if (!below_hand) assignLimb(j, Segment::kHand, Segment::kForearm, Segment::kUpperArm);
+  }
+  constexpr int kHeadGroup = -2;
+  constexpr int kTrunkGroup = -3;
+  for (int j = 0; j < joints; ++j) {
+    if (unassigned(j) && isHeadName(skeleton.names[j])) {
+      for (int k = j; k < joints; ++k) {
+        if (inSubtree(skeleton, j, k)) assign(k, Segment::kHead, kHeadGroup);
+      }
+      break;
+    }
+  }
+  for (int j = 0; j < joints; ++j) {
+    if (isNeckName(skeleton.names[j])) assign(j, Segment::kHead, kHeadGroup);
+  }
+  // Everything above a limb or the head is trunk (the pelvis included).
+  for (int j = joints - 1; j >= 0; --j) {
+    if (segment[j] == Segment::kNone || segment[j] == Segment::kOther) continue;
+    for (int a = skeleton.parents[j]; a != kNoParent && !massless[a];
+         a = skeleton.parents[a]) {
+      if (segment[a] == Segment::kNone) {
+        segment[a] = Segment::kTrunk;
+        group[a] = kTrunkGroup;
+      }
+    }
+  }
+  if (segment[pelvis] == Segment::kNone) {
+    segment[pelvis] = Segment::kTrunk;
+    group[pelvis] = kTrunkGroup;
+  }
+  // The rest: twist and helper joints share their limb segment; trunk-named joints are trunk;
+  // anything else (a tail) is "other".
+  for (int j = 0; j < joints; ++j) {
+    if (!unassigned(j)) continue;
+    const int p = skeleton.parents[j];
+    const Segment parent = segment[p];
+    if (parent == Segment::kThigh || parent == Segment::kShank || parent == Segment::kUpperArm ||
+        parent == Segment::kForearm) {
+      assign(j, parent, group[p]);
+    } else if (isTrunkName(skeleton.names[j]) && parent == Segment::kTrunk) {
+      assign(j, Segment::kTrunk, kTrunkGroup);
+    } else {
+      assign(j, Segment::kOther, j);
+    }
+  }
+
+  // Body lengths: the bones to the children and End Site.
+  std::vector<double> length(joints, 0.0);
+  for (int j = 0; j < joints; ++j) {
+    const int p = skeleton.parents[j];
+    if (p != kNoParent) length[p] += glm::length(skeleton.offsets[j]);
+    if (skeleton.end_sites[j]) length[j] += glm::length(*skeleton.end_sites[j]);
+  }
+  const auto tableFraction = [&](Segment s) {
+    switch (s) {
+      case Segment::kHead:
+        return table.head;
+      case Segment::kTrunk:
+        return table.trunk;
+      case Segment::kUpperArm:
+        return table.upper_arm;
+      case Segment::kForearm:
+        return table.forearm;
+      case Segment::kHand:
+        return table.hand;
+      case Segment::kThigh:
+        return table.thigh;
+      case Segment::kShank:
+        return table.shank;
+      case Segment::kFoot:
+        return table.foot;
+      case Segment::kNone:
+      case Segment::kOther:
+        break;
+    }
+    return 0.0;
+  };
+  // Each group's fraction, split among its joints by body length (evenly when they have none).
+  std::vector<double> fraction(joints, 0.0);
+  double matched_mass = 0.0;
+  double matched_length = 0.0;
+  for (int j = 0; j < joints; ++j) {
+    if (segment[j] == Segment::kNone || segment[j] == Segment::kOther) continue;
+    double group_length = 0.0;
+    int members = 0;
+    bool first_member = true;
+    for (int k = 0; k < joints; ++k) {
+      if (group[k] != group[j] || segment[k] != segment[j]) continue;
+      group_length += length[k];
+      ++members;
+      first_member = first_member && k >= j;
+    }
+    const double share = group_length > 0.0 ? length[j] / group_length : 1.0 / members;
+    fraction[j] = tableFraction(segment[j]) * share;
+    matched_mass += fraction[j];
+    if (first_member) matched_length += group_length;
+  }
+  const double density = matched_length > 0.0 ? matched_mass / matched_length : 0.0;
+  for (int j = 0; j < joints; ++j) {
+    if (segment[j] == Segment::kOther) fraction[j] = density * length[j];
+  }
+  const double total = std::accumulate(fraction.begin(), fraction.end(), 0.0);
+  if (total > 0.0) {
+    for (double& f : fraction) f /= total;
+  } else {
+    fraction.assign(joints, 1.0 / joints);  // nothing matched and nothing has length
+  }
+  return {segment, fraction};
+}
+
+std::vector<glm::dvec3> centreOfMass(const Skeleton& skeleton, const Clip& clip,
+                                     const MassDistribution& masses) {
+  const int joints = skeleton.jointCount();
+  std::vector<glm::dmat4> world(joints);
+  std::vector<glm::dvec3> com(clip.frame_count, glm::dvec3(0.0));
+  std::vector<glm::dvec3> weighted(joints);
+  std::vector<double> weight(joints);
+  for (int f = 0; f < clip.frame_count; ++f) {
+    worldTransforms(skeleton, clip, f, world);
+    std::fill(weighted.begin(), weighted.end(), glm::dvec3(0.0));
+    std::fill(weight.begin(), weight.end(), 0.0);
+    // Each bone's midpoint, weighted by its rest length, into the body of the joint it hangs on.
+    for (int j = 0; j < joints; ++j) {
+      const glm::dvec3 here(world[j][3]);
+      const int p = skeleton.parents[j];
+      if (p != kNoParent) {
+        const double l = glm::length(skeleton.offsets[j]);
+        weighted[p] += l * 0.5 * (glm::dvec3(world[p][3]) + here);
+        weight[p] += l;
+      }
+      if (skeleton.end_sites[j]) {
+        const double l = glm::length(*skeleton.end_sites[j]);
+        weighted[j] +=
+            l * 0.5 * (here + glm::dvec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0)));
+        weight[j] += l;
+      }
+    }
+    for (int j = 0; j < joints; ++j) {
+      const glm::dvec3 body = weight[j] > 0.0 ? weighted[j] / weight[j] : glm::dvec3(world[j][3]);
+      com[f] += masses.fractions[j] * body;
+    }
+  }
+  return com;
 }
 
 }  // namespace sinew::motion

@@ -11,13 +11,21 @@
 namespace sinew::physics {
 namespace {
 
-// Links that may touch the ground without a fall: the feet and the links below them.
+// Links that may touch the ground without a fall: the feet and the links below them, and for a
+// creature on four feet or more also the segment above each foot (a dog's pastern and carpus: the
+// MANN dog's ForeArm ends a paw's length above the ground, and its capsule meets the ground when
+// the wrist folds at touchdown).
 std::vector<char> groundLinks(const BodyPlan& plan) {
   std::vector<char> allowed(plan.links.size(), 0);
+  int feet = 0;
   for (size_t li = 0; li < plan.links.size(); ++li) {
     const int parent = plan.links[li].parent;
     allowed[li] = plan.links[li].foot || (parent >= 0 && allowed[static_cast<size_t>(parent)]);
+    feet += plan.links[li].foot ? 1 : 0;
   }
+  if (feet >= 4)
+    for (const Link& link : plan.links)
+      if (link.foot && link.parent > 0) allowed[static_cast<size_t>(link.parent)] = 1;
   return allowed;
 }
 

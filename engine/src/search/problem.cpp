@@ -266,6 +266,7 @@ nlohmann::json fitnessJson(const FitnessTerms& t) {
   j["speed_m_s"] = t.speed_m_s;
   j["track_err_rad_rms"] = t.track_err_rad_rms;
   j["fell"] = t.fell;
+  if (t.fell) j["fall_reason"] = t.fall_reason;
   return j;
 }
 
@@ -281,6 +282,7 @@ Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j) {
     t.speed_m_s = j.at("speed_m_s").get<double>();
     t.track_err_rad_rms = j.at("track_err_rad_rms").get<double>();
     t.fell = j.at("fell").get<bool>();
+    if (j.contains("fall_reason")) t.fall_reason = j.at("fall_reason").get<std::string>();
     return t;
   } catch (const nlohmann::json::exception& e) {
     return Status::error(e.what());
@@ -310,6 +312,7 @@ FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& r
   const double window = problem.simulation.seconds;
   FitnessTerms t;
   t.fell = r.fell;
+  if (r.fell) t.fall_reason = r.fall_reason;
   t.survived_s = r.fell ? r.fall_time_s : r.seconds;
   t.distance_m = r.distance_m;
   t.speed_m_s = r.speed_m_s;

@@ -109,12 +109,13 @@ struct FitnessTerms {
   double speed_m_s = 0.0;
   double track_err_rad_rms = 0.0;
   bool fell = false;
+  std::string fall_reason;  // when it fell: what touched the ground or dropped (for the user)
 };
 inline constexpr int kFitnessTermCount = 7;
 const char* fitnessTermName(int term);            // "fall", "tracking", ...
 double fitnessTerm(const FitnessTerms& t, int term);
 // {"fall": ..., ..., "total", "survived_s", "distance_m", "speed_m_s", "track_err_rad_rms",
-// "fell"}: as checkpoints and best.json carry them.
+// "fell", and "fall_reason" when it fell}: as checkpoints and best.json carry them.
 nlohmann::json fitnessJson(const FitnessTerms& t);
 Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j);
 

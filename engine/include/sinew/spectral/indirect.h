@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "sinew/core/status.h"
+#include "sinew/motion/anatomy.h"
 #include "sinew/motion/clip.h"
 #include "sinew/motion/skeleton.h"
 #include "sinew/spectral/analysis.h"
@@ -18,31 +19,21 @@
 
 namespace sinew::spectral {
 
-enum class Side : std::uint8_t { kUnknown, kLeft, kRight };
-const char* sideName(Side side);  // "left", "right", "unknown"
+// Anatomy lives in motion (anatomy.h); these names stay here for the analysis code that reads them.
+using motion::centreOfMass;
+using motion::findFeet;
+using motion::Foot;
+using motion::FootPoint;
+using motion::MassDistribution;
+using motion::massDistribution;
+using motion::Segment;
+using motion::SegmentMassTable;
+using motion::segmentName;
+using motion::Side;
+using motion::sideName;
 
-// A point that can touch the ground: a joint, or a joint's End Site.
-struct FootPoint {
-  int joint = 0;          // skeleton joint index
-  bool end_site = false;  // the joint's End Site rather than the joint itself
-};
 
-struct Foot {
-  int joint = 0;                  // the foot joint (ankle, or paw): its subtree is the foot
-  Side side = Side::kUnknown;     // from the joint names, else from the first frame's pose
-  bool by_name = true;            // found by its name; false: by geometry (lowest chain end)
-  int pair = -1;                  // the opposite foot of the same pair (left <-> right; front or
-                                  // hind for quadrupeds), index into the feet, or -1
-  std::vector<FootPoint> points;  // the foot joint, its descendants and their End Sites; each
-                                  // frame the lowest of them is the contact point (heel or ankle
-                                  // first, then the toe as a flat foot rolls over)
-};
 
-// Chain ends of the leg chains: joints named foot, ankle, toe, paw or hoof (the uppermost such
-// joint of each chain); and, for legs those names miss (a dog's front legs end in "Hand"),
-// chain ends lying on the ground in the first frame in branches of their own below the pelvis.
-// Feet are in joint order. Fails, saying why, when the skeleton has none.
-Result<std::vector<Foot>> findFeet(const motion::Skeleton& skeleton, const motion::Clip& clip);
 
 struct ContactSettings {
   double height_tolerance_m = 0.05;  // a foot is down while its contact point is within this of
@@ -58,55 +49,7 @@ struct ContactSettings {
   Status validate() const;  // the message names the offending field
 };
 
-// Segment mass fractions of the whole body (de Leva 1996, adult male: Adjustments to
-// Zatsiorsky-Seluyanov's segment inertia parameters, J. Biomech. 29(9)). Fractions, 0..1, for one
-// segment (each limb segment counts once per limb); renormalised over the segments a skeleton has.
-struct SegmentMassTable {
-  double head = 0.0694;       // head and neck
-  double trunk = 0.4346;      // pelvis to shoulders, clavicles included
-  double upper_arm = 0.0271;  // per arm
-  double forearm = 0.0162;
-  double hand = 0.0061;
-  double thigh = 0.1416;  // per leg (a quadruped's front legs count as legs)
-  double shank = 0.0433;
-  double foot = 0.0137;  // toes included
 
-  Status validate() const;  // every fraction finite and >= 0, their sum > 0
-};
-
-enum class Segment : std::uint8_t {
-  kNone,  // carries no mass: joints above the pelvis (a root at the origin), or zero length
-  kHead,
-  kTrunk,
-  kUpperArm,
-  kForearm,
-  kHand,
-  kThigh,
-  kShank,
-  kFoot,
-  kOther,  // no anthropometric match (a tail): mass by bone length at the body's mean density
-};
-const char* segmentName(Segment segment);
-
-// Each joint's body is the bones from the joint to its children and End Site; its centre of mass
-// is the length-weighted mean of the bones' midpoints (the joint itself when they have no
-// length).
-struct MassDistribution {
-  std::vector<Segment> segments;  // (joints) what each joint's body is
-  std::vector<double> fractions;  // (joints) share of the total mass, summing to 1
-};
-
-// Segments are matched structurally where names are ambiguous ("Shoulder" is a clavicle in some
-// rigs and an upper arm in others): from each foot up, foot / shank / thigh; from each hand
-// (the uppermost joint named hand or wrist outside the legs) up, hand / forearm / upper arm; the
-// uppermost head joint's subtree and neck joints, head; the joints above those, trunk. Twist and
-// helper joints inside a limb segment share its mass.
-MassDistribution massDistribution(const motion::Skeleton& skeleton, const std::vector<Foot>& feet,
-                                  const SegmentMassTable& table = {});
-
-// Centre of mass per frame, world metres.
-std::vector<glm::dvec3> centreOfMass(const motion::Skeleton& skeleton, const motion::Clip& clip,
-                                     const MassDistribution& masses);
 
 struct IndirectSettings {
   ContactSettings contacts;
