@@ -128,8 +128,8 @@ void principalAxis(const glm::dmat3& m, glm::dvec3& axis, double& share) {
   share = glm::dot(v, m * v) / trace;
 }
 
-double segmentRadius(const BodyPlanSettings& s, spectral::Segment segment) {
-  using spectral::Segment;
+double segmentRadius(const BodyPlanSettings& s, motion::Segment segment) {
+  using motion::Segment;
   switch (segment) {
     case Segment::kHead:
       return s.radius_head;
@@ -491,12 +491,12 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
 
   std::vector<glm::dmat4> world(n);
   motion::worldTransforms(skeleton, clip, 0, world);
-  std::vector<spectral::Foot> feet;
-  if (auto found = spectral::findFeet(skeleton, clip); found.ok()) feet = found.value();
-  const spectral::MassDistribution masses =
-      spectral::massDistribution(skeleton, feet, settings.mass_table);
+  std::vector<motion::Foot> feet;
+  if (auto found = motion::findFeet(skeleton, clip); found.ok()) feet = found.value();
+  const motion::MassDistribution masses =
+      motion::massDistribution(skeleton, feet, settings.mass_table);
   std::vector<char> is_foot(n, 0);
-  for (const spectral::Foot& f : feet) is_foot[f.joint] = 1;
+  for (const motion::Foot& f : feet) is_foot[f.joint] = 1;
 
   std::vector<std::vector<int>> children(n);
   for (int j = 1; j < n; ++j) children[skeleton.parents[j]].push_back(j);
@@ -504,7 +504,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
   // The base: skip a massless root chain (a root at the origin above the pelvis).
   int base = 0;
   plan.base_chain.push_back(0);
-  while (masses.segments[base] == spectral::Segment::kNone && children[base].size() == 1) {
+  while (masses.segments[base] == motion::Segment::kNone && children[base].size() == 1) {
     base = children[base][0];
     plan.base_chain.push_back(base);
   }
@@ -536,7 +536,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     if (is_foot[j] || keep) continue;
     bool m = subtree_merged[p] != 0;
     if (!m && (nameHasAny(skeleton.names[j], settings.merge_names) ||
-               masses.segments[j] == spectral::Segment::kHand)) {
+               masses.segments[j] == motion::Segment::kHand)) {
       subtree_merged[j] = 1;
       m = true;
     }
@@ -547,8 +547,8 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
       if (leaf < min_length) m = true;
     }
     if (!m && settings.merge_short_trunk &&
-        (masses.segments[j] == spectral::Segment::kTrunk ||
-         masses.segments[j] == spectral::Segment::kHead)) {
+        (masses.segments[j] == motion::Segment::kTrunk ||
+         masses.segments[j] == motion::Segment::kHead)) {
       // Distance from the pivot of the link the parent belongs to, at the first pose.
       int owner = p;
       while (owner > base && merged[owner]) owner = skeleton.parents[owner];
@@ -600,10 +600,10 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
   {
     glm::dvec3 left(0.0), right(0.0);
     int nl = 0, nr = 0;
-    for (const spectral::Foot& f : feet) {
+    for (const motion::Foot& f : feet) {
       const glm::dvec3 p(world[f.joint][3]);
-      if (f.side == spectral::Side::kLeft) left += p, ++nl;
-      if (f.side == spectral::Side::kRight) right += p, ++nr;
+      if (f.side == motion::Side::kLeft) left += p, ++nl;
+      if (f.side == motion::Side::kRight) right += p, ++nr;
     }
     if (nl > 0 && nr > 0) {
       glm::dvec3 d = left / double(nl) - right / double(nr);
@@ -625,8 +625,8 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     link.pivot = glm::dvec3(t[3]);
     link.zero_rotation = glm::normalize(glm::quat_cast(glm::dmat3(t)));
 
-    const bool hinge_candidate = link.segment == spectral::Segment::kShank ||
-                                 link.segment == spectral::Segment::kForearm ||
+    const bool hinge_candidate = link.segment == motion::Segment::kShank ||
+                                 link.segment == motion::Segment::kForearm ||
                                  nameHasAny(link.name, settings.hinge_names);
     const glm::dvec3 lateral_link =
         glm::normalize(glm::inverse(glm::quat_cast(glm::dmat3(world[link.joint]))) * lateral_world);
@@ -807,7 +807,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
           glm::inverse(glm::quat_cast(glm::dmat3(rest_up[link.joint]))) * world_rotation);
     } else if (points_world.empty()) {
       shape.type = ShapeType::kSphere;
-    } else if (points_world.size() >= 2 && (link.segment == spectral::Segment::kTrunk || li == 0)) {
+    } else if (points_world.size() >= 2 && (link.segment == motion::Segment::kTrunk || li == 0)) {
       // A trunk link spans its points (hips, spine, shoulders, neck): a box around them padded
       // by the trunk radius. A sphere at their centroid would make a light, tiny-inertia torso
       // that explicit PD cannot hold stiffly against the legs.
@@ -840,12 +840,12 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
 
   // Masses: de Leva fractions for a human-sized biped, shape volume otherwise.
   bool has_arms = false, has_legs = false;
-  for (spectral::Segment s : masses.segments) {
-    has_arms = has_arms || s == spectral::Segment::kUpperArm;
-    has_legs = has_legs || s == spectral::Segment::kThigh;
+  for (motion::Segment s : masses.segments) {
+    has_arms = has_arms || s == motion::Segment::kUpperArm;
+    has_legs = has_legs || s == motion::Segment::kThigh;
   }
   int named_feet = 0;
-  for (const spectral::Foot& f : feet) named_feet += f.by_name ? 1 : 0;
+  for (const motion::Foot& f : feet) named_feet += f.by_name ? 1 : 0;
   plan.human = has_arms && has_legs && named_feet == 2 && plan.size_m > 1.0 && plan.size_m < 2.5;
   std::vector<double> fraction(link_count, 0.0);
   if (plan.human)

@@ -1,7 +1,7 @@
 // Random articulated creatures, after the "random hopping creatures" of the physics issue: from a
 // seed, a torso with a few legs of random lengths, attachment points and joint kinds, and a
 // default periodic clip to go with it. Every creature builds a valid physics body plan: each leg
-// ends in a joint named "...Foot" (so spectral::findFeet finds it and the plan gives it a box
+// ends in a joint named "...Foot" (so motion::findFeet finds it and the plan gives it a box
 // sole), hinges are named "...Knee" (so the plan makes them hinges), and no name uses a word the
 // body plan or the mass model reads as something else (hand, head, hip, toe, ...).
 //

@@ -23,7 +23,7 @@
 #include "sinew/core/status.h"
 #include "sinew/motion/clip.h"
 #include "sinew/motion/skeleton.h"
-#include "sinew/spectral/indirect.h"
+#include "sinew/motion/anatomy.h"
 
 namespace sinew::physics {
 
@@ -78,8 +78,8 @@ struct Link {
   glm::dvec3 com{0.0};       // centre of mass in the link frame (the shape's centre), m
   glm::dvec3 inertia{0.01};  // diagonal inertia about the centre of mass in the link
                              // frame, kg m^2 (off-diagonal terms of rotated shapes dropped)
-  spectral::Segment segment = spectral::Segment::kNone;  // anthropometric group of the pivot joint
-  bool foot = false;      // a foot (box sole) found by spectral::findFeet
+  motion::Segment segment = motion::Segment::kNone;  // anthropometric group of the pivot joint
+  bool foot = false;      // a foot (box sole) found by motion::findFeet
   bool supports = false;  // its subtree contains a foot: it carries the body when standing
 };
 
@@ -109,7 +109,7 @@ struct BodyPlanSettings {
   double density_kg_m3 = 1000.0;    // other creatures: mass by shape volume, kg/m^3, > 0
   double min_link_mass_fraction = 0.01;   // no link lighter than this share of the total (tail
                                           // tips and paws by volume would be ~1/600), [0, 0.1)
-  spectral::SegmentMassTable mass_table;  // de Leva fractions
+  motion::SegmentMassTable mass_table;  // de Leva fractions
   // Overrides, applied after the rules above, each naming a link by its pivot joint's name
   // (exactly); a name that is not a link of the plan fails the build, naming it.
   std::vector<std::pair<std::string, double>> mass_overrides;  // link -> kg, > 0 (inertia scales
