@@ -26,8 +26,8 @@ if [ ${#clips[@]} -eq 0 ]; then
           "$root/assets/hopper_hop.bvh" "$root/assets/stepper_step.bvh")
 fi
 mkdir -p "$out"
-echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg | evaluations | wall s | fell because |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg | evaluations | wall s | push N s fwd/back/left/right | fell because |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for clip in "${clips[@]}"; do
   name=$(basename "$clip" .bvh)
   dir="$out/$name"
@@ -40,9 +40,9 @@ for clip in "${clips[@]}"; do
   "$sinew" simulate --rig "$clip" --controller "$dir/best.json" --seconds 10 --json "$dir/replay10.json" > "$dir.replay10.log" 2>&1
   "$sinew" simulate --rig "$clip" --controller "$dir/best.json" --seconds 30 --json "$dir/replay30.json" > "$dir.replay30.log" 2>&1
   "$sinew" analyze "$clip" --json "$dir/analysis.json" > /dev/null 2>&1 || true
-  python3 - "$name" "$dir" "$wall" <<'PY'
-import json, re, sys
-name, d, wall = sys.argv[1], sys.argv[2], sys.argv[3]
+  python3 - "$name" "$dir" "$wall" "$sinew" "$clip" <<'PY'
+import json, re, subprocess, sys
+name, d, wall, sinew, clip = sys.argv[1:6]
 r10 = json.load(open(f"{d}/replay10.json"))
 r30 = json.load(open(f"{d}/replay30.json"))
 head = open(f"{d}.replay10.log").readline()
@@ -55,9 +55,31 @@ try:
     clip_speed = f"{(v[0] ** 2 + v[2] ** 2) ** 0.5:.2f}"
 except Exception:
     pass
+# Push robustness: the largest impulse on the pelvis at 2 s, along the clip's travel, against
+# it and to each side, after which the replay keeps walking 3 s (of 10, 20, 40, 60, 80 N s).
+pushes = "-"
+if not r10["fell"]:
+    try:
+        v = json.load(open(f"{d}/analysis.json"))["travel_velocity_m_s"]
+        n = (v[0] ** 2 + v[2] ** 2) ** 0.5
+        fwd = (v[0] / n, v[2] / n) if n > 0.05 else (0.0, 1.0)
+    except Exception:
+        fwd = (0.0, 1.0)
+    best = []
+    for dx, dz in [fwd, (-fwd[0], -fwd[1]), (fwd[1], -fwd[0]), (-fwd[1], fwd[0])]:
+        held = 0
+        for j in [10, 20, 40, 60, 80]:
+            out = subprocess.run([sinew, "simulate", "--rig", clip, "--controller", f"{d}/best.json",
+                                  "--seconds", "5", "--push", f"2,{dx * j:.3f},0,{dz * j:.3f}",
+                                  "--json", f"{d}/push.json"], capture_output=True)
+            if out.returncode != 0 or json.load(open(f"{d}/push.json"))["fell"]:
+                break
+            held = j
+        best.append(str(held))
+    pushes = "/".join(best)
 print(f"| {name} | {links} | {dof} | {mass} | {r10['seconds']:.1f} s | {r30['seconds']:.1f} s | "
       f"{r10['distance_m']:.1f} | {r10['speed_m_s']:.2f} ({clip_speed}) | "
-      f"{r10['track_err_rad_rms'] * 57.29578:.1f} | {evals.group(1) if evals else '?'} | {wall} | "
+      f"{r10['track_err_rad_rms'] * 57.29578:.1f} | {evals.group(1) if evals else '?'} | {wall} | {pushes} | "
       f"{r10.get('fall_reason', '') if r10['fell'] else '-'} |")
 PY
 done
