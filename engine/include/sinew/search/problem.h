@@ -109,6 +109,8 @@ struct FitnessTerms {
   double speed_m_s = 0.0;
   double track_err_rad_rms = 0.0;
   bool fell = false;
+  bool diverged = false;  // the simulation diverged (or could not run): total is +inf, a
+                          // failure the optimisers rank last; never written as a number
 };
 inline constexpr int kFitnessTermCount = 7;
 const char* fitnessTermName(int term);            // "fall", "tracking", ...
