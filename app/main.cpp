@@ -26,7 +26,19 @@ int main(int argc, char** argv) {
       app.parse(argc, argv);
     }
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+    // Bad input on the command line is bad input: one line and exit 1 (docs/cli.md).
+    const std::string command =
+        app.get_subcommands().empty() ? "" : " " + app.get_subcommands().front()->get_name();
+    std::cerr << "sinew: " << error.what() << " (see sinew" << command << " --help)\n";
+    return 1;
+  } catch (const std::exception& error) {
+    // The last boundary: a library exception a command did not turn into a message (nlohmann's
+    // on text it cannot write, an allocation failure) is one line and exit 1, never an abort.
+    const std::string command =
+        app.get_subcommands().empty() ? "sinew" : app.get_subcommands().front()->get_name();
+    std::cerr << "sinew: " << command << ": " << error.what() << '\n';
+    return 1;
   }
   if (app.get_subcommands().empty()) {
     std::cout << app.help();

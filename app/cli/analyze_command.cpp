@@ -10,6 +10,7 @@
 #include "cli/analyze_plot.h"
 #include "cli/commands.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/spectral/analysis.h"
 
 namespace sinew::app {
@@ -153,11 +154,12 @@ int runAnalyze(const AnalyzeArgs& args) {
   if (!args.json_path.empty()) {
     nlohmann::json json = spectrumJson(skeleton, spectrum.value());
     json.update(indirectJson(skeleton, indirect));
-    json["file"] = args.file;
+    json["file"] = toUtf8(args.file);  // a path is bytes; JSON text is UTF-8
     json["animation"] = asset.value().clips[clip.value()].name;
     json["settings"] = {{"harmonics", args.harmonics}, {"tolerance_cm", args.tolerance_cm},
                         {"max_strides", args.strides}};
-    Status status = writeFileAtomically(args.json_path, json.dump(2) + "\n");
+    Status status = writeFileAtomically(
+        args.json_path, json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!status.ok()) return fail(status.message());
     std::printf("\nwrote %s\n", args.json_path.c_str());
   }
@@ -185,7 +187,15 @@ void addAnalyzeCommand(CLI::App& app, int& exit_code) {
   command->add_option("--tolerance-cm", args->tolerance_cm,
                       "Worst joint position error allowed by --harmonics auto, cm")
       ->default_val(1.0)
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double cm = 0.0;
+            const bool number = CLI::detail::lexical_cast(text, cm);
+            return number && cm > 0.0 && cm <= 1000.0
+                       ? std::string()
+                       : "expected centimetres in (0, 1000], got " + text;
+          },
+          "CM in (0, 1000]"));
   command->add_option("--strides", args->strides, "Most whole strides to analyse together")
       ->default_val(1)
       ->check(CLI::Range(1, 1000));

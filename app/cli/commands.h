@@ -27,6 +27,10 @@ Result<int> selectClip(const motion::MotionAsset& asset, const std::string& name
 
 int fail(const std::string& message);  // prints "sinew: message" to stderr, returns 1
 
+// For integer options: digits only ("4.5", "-1" and "1e9" are refused rather than truncated or
+// wrapped; CLI11 alone reads "-1" into an unsigned 64-bit seed as 2^64 - 1).
+CLI::Validator wholeNumber();
+
 void addInfoCommand(CLI::App& app, int& exit_code);
 void addConvertCommand(CLI::App& app, int& exit_code);
 void addAnalyzeCommand(CLI::App& app, int& exit_code);

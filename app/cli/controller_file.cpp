@@ -1,5 +1,7 @@
 #include "cli/controller_file.h"
 
+#include <cstdio>
+
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
@@ -40,6 +42,9 @@ Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::strin
     if (other.skeleton.names != out.asset.skeleton.names)
       return Status::error(clip_path + ": its skeleton is not the rig's (" + rig_path +
                            "): the joints differ in names or order");
+    if (other.skeleton.parents != out.asset.skeleton.parents)
+      return Status::error(clip_path + ": its skeleton is not the rig's (" + rig_path +
+                           "): the same joint names in another hierarchy");
     source = &other;
   }
   const std::string source_name = clip_path.empty() ? rig_path : clip_path;
@@ -53,8 +58,11 @@ Result<LoadedRig> loadRigAndTarget(const std::string& rig_path, const std::strin
   out.plan = std::move(plan).value();
   if (!target_path.empty()) {
     // Coefficients written by `sinew style -o X.json` (or any edit): tracked as they are.
-    Result<spectral::TargetMotion> loaded = spectral::loadTarget(target_path, skeleton);
+    std::vector<std::string> warnings;
+    Result<spectral::TargetMotion> loaded = spectral::loadTarget(target_path, skeleton, &warnings);
     if (!loaded.ok()) return loaded.status();
+    for (const std::string& warning : warnings)
+      std::fprintf(stderr, "sinew: warning: %s\n", warning.c_str());
     out.target = std::move(loaded).value();
     out.what = target_path;
   } else {

@@ -32,13 +32,16 @@ int runConvert(const ConvertArgs& args) {
     export_options.bvh_frame = frame;
   }
   // glTF keys are resampled at import; BVH frames are resampled on the way out.
-  if (options.value().fps && !asset.value().gltf) export_options.fps = options.value().fps;
+  // The report says what was written, so the resampling happens here rather than in export.
   const motion::Clip& chosen = asset.value().clips[clip.value()];
-  Status status = motion::exportMotion(args.output, asset.value(), chosen, export_options);
+  const motion::Clip written = options.value().fps && !asset.value().gltf
+                                   ? motion::resampleClip(chosen, 1.0 / *options.value().fps)
+                                   : chosen;
+  Status status = motion::exportMotion(args.output, asset.value(), written, export_options);
   if (!status.ok()) return fail(status.message());
-  std::cout << "wrote " << args.output << ": animation '" << chosen.name << "', "
-            << asset.value().skeleton.jointCount() << " joints, " << chosen.frame_count
-            << " frames at " << chosen.fps() << " fps\n";
+  std::cout << "wrote " << args.output << ": animation '" << written.name << "', "
+            << asset.value().skeleton.jointCount() << " joints, " << written.frame_count
+            << " frames at " << written.fps() << " fps\n";
   return 0;
 }
 

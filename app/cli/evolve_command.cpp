@@ -3,6 +3,7 @@
 // generation; Ctrl-C stops cleanly, keeping the best so far and a checkpoint. Writes best.bvh,
 // best.glb, best.json (loadable by `sinew simulate --controller`), history.csv and
 // checkpoint.json into --out.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -17,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/search/session.h"
 
 namespace sinew::app {
@@ -34,7 +36,7 @@ struct EvolveArgs {
   std::string target_path;
   std::string animation;
   int population = 0;
-  int generations = 0;
+  int generations = -1;  // -1: not given
   double minutes = 0.0;
   double window = 10.0;
   std::string optimizer = "cmaes";
@@ -63,13 +65,18 @@ std::string historyCsv(const search::Snapshot& snap) {
     const std::string n = search::fitnessTermName(k);
     csv << ',' << n << "_best," << n << "_mean," << n << "_worst";
   }
-  csv << ",best_survived_s,best_distance_m\n";
+  csv << ",best_survived_s,best_distance_m,scored,diverged\n";
   for (const search::GenerationRecord& r : snap.history) {
-    csv << r.generation << ',' << r.evaluations << ',' << r.wall_s << ',' << r.total.best << ','
-        << r.total.mean << ',' << r.total.worst;
-    for (const search::TermStats& t : r.terms)
-      csv << ',' << t.best << ',' << t.mean << ',' << t.worst;
-    csv << ',' << r.best_survived_s << ',' << r.best_distance_m << '\n';
+    csv << r.generation << ',' << r.evaluations << ',' << r.wall_s;
+    if (r.scored == 0) {  // nothing scored: empty cells, not inf or nan
+      csv << std::string(3 * (search::kFitnessTermCount + 1) + 2, ',');
+    } else {
+      csv << ',' << r.total.best << ',' << r.total.mean << ',' << r.total.worst;
+      for (const search::TermStats& t : r.terms)
+        csv << ',' << t.best << ',' << t.mean << ',' << t.worst;
+      csv << ',' << r.best_survived_s << ',' << r.best_distance_m;
+    }
+    csv << ',' << r.scored << ',' << r.diverged << '\n';
   }
   return csv.str();
 }
@@ -179,7 +186,9 @@ int runEvolve(EvolveArgs args) {
   settings.population = args.population;
   settings.generations = args.generations;
   settings.minutes = args.minutes;
-  if (settings.generations == 0 && settings.minutes == 0.0) settings.generations = 40;
+  if (args.generations == 0 && args.minutes == 0.0)
+    return fail("--generations 0 with no --minutes gives the search no budget");
+  if (args.generations < 0) settings.generations = args.minutes > 0.0 ? 0 : 40;  // not given
   if (!args.resume.empty() && (args.population > 0 || args.optimizer != "cmaes"))
     return fail(
         "--resume continues the search as it was: --population and --optimizer come "
@@ -192,7 +201,7 @@ int runEvolve(EvolveArgs args) {
     made = search::Session::resume(std::move(problem).value(), checkpoint);
     if (!made.ok()) return fail(args.resume + ": " + made.message());
     if (args.generations > 0 || args.minutes > 0.0) {
-      Status budget = made.value()->setBudget(args.generations, args.minutes);
+      Status budget = made.value()->setBudget(std::max(0, args.generations), args.minutes);
       if (!budget.ok()) return fail(budget.message());
     }
     if (!args.weights.empty()) made.value()->setWeights(weights);  // from the next generation
@@ -257,8 +266,17 @@ int runEvolve(EvolveArgs args) {
                       std::max(0.0, used.minutes * 60.0 - r.wall_s));
         left = eta;
       }
-      std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s\n", r.generation,
-                  termsLine(snap->best_terms).c_str(), r.total.mean, rate, left.c_str());
+      const std::string diverged =
+          r.diverged == 0 ? ""
+          : r.scored == 0 ? "  (the whole generation diverged: " + std::to_string(r.diverged) + ")"
+                          : "  (" + std::to_string(r.diverged) + " diverged)";
+      if (snap->best_point.empty())
+        std::printf("gen %3d  best none yet: no evaluation scored%s  %.1f eval/s%s\n", r.generation,
+                    diverged.c_str(), rate, left.c_str());
+      else
+        std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s%s\n", r.generation,
+                    termsLine(snap->best_terms).c_str(), r.total.mean, rate, left.c_str(),
+                    diverged.c_str());
       std::fflush(stdout);
     }
     if (snap->state == "finished" || snap->state == "stopped") break;
@@ -269,9 +287,10 @@ int runEvolve(EvolveArgs args) {
 
   const auto snap = session.snapshot();
   nlohmann::json saved_state = session.checkpoint();
-  saved_state["problem"] = {{"rig", args.rig},
-                            {"clip", args.clip},
-                            {"target", args.target_path},
+  // Paths are bytes and JSON text is UTF-8: a Latin-1 file name is stored converted.
+  saved_state["problem"] = {{"rig", toUtf8(args.rig)},
+                            {"clip", toUtf8(args.clip)},
+                            {"target", toUtf8(args.target_path)},
                             {"animation", args.animation},
                             {"harmonics", args.harmonics},
                             {"window_s", args.window},
@@ -284,16 +303,19 @@ int runEvolve(EvolveArgs args) {
   {
     // K per joint and the model's edits, as a project fragment (absolute paths).
     Project fragment;
-    fragment.rig = args.rig;
+    fragment.rig = toUtf8(args.rig);
     fragment.harmonics = args.harmonics;
     fragment.joint_k = args.joint_k;
     fragment.edits = args.edits;
     saved_state["problem"]["project"] = nlohmann::json::parse(projectJson(fragment, {}));
   }
-  Status saved = writeFileAtomically(out / "checkpoint.json", saved_state.dump() + "\n");
+  Status saved = writeFileAtomically(
+      out / "checkpoint.json",
+      saved_state.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   if (!saved.ok()) return fail(saved.message());
   saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
   if (!saved.ok()) return fail(saved.message());
+  if (!snap->failure.empty()) return fail(args.out + ": " + snap->failure);
   if (snap->best_point.empty()) {
     std::printf("no generation finished: wrote %s and %s only\n",
                 (out / "checkpoint.json").string().c_str(), (out / "history.csv").string().c_str());
@@ -338,8 +360,10 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       ->add_option("--population", args->population,
                    "Individuals per generation (default: "
                    "CMA-ES 4 + 3 ln n, GA 32)")
+      ->check(wholeNumber())
       ->check(CLI::Range(0, 10000));
   command->add_option("--generations", args->generations, "Generations (default 40)")
+      ->check(wholeNumber())
       ->check(CLI::Range(0, 1000000));
   command->add_option("--minutes", args->minutes, "Wall-clock budget, minutes")
       ->check(CLI::Range(0.0, 100000.0));
@@ -350,7 +374,8 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command->add_flag("--no-prior", args->no_prior,
                     "Random start within generic ranges (the baseline the DFT prior is measured "
                     "against)");
-  command->add_option("--seed", args->seed, "Random seed (same seed, same result)");
+  command->add_option("--seed", args->seed, "Random seed (same seed, same result)")
+      ->check(wholeNumber());
   command->add_option("--threads", args->threads, "Evaluation threads (default: every core)")
       ->check(CLI::Range(0, 1024));
   command->add_option("--harmonics", args->harmonics, "Harmonics per joint of the seed")

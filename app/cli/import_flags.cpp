@@ -9,8 +9,11 @@ void ImportFlags::addTo(CLI::App& command) {
       ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft", "cmu"}));
   command.add_option("--up", up, "Up axis of a BVH file, overriding detection")
       ->check(CLI::IsMember({"Y", "Z", "y", "z"}));
-  command.add_option("--fps", fps, "Frame rate to resample to (default: the file's own; for glTF the keys' median spacing)")
-      ->check(CLI::Range(0.001, 1000.0));
+  command
+      .add_option(
+          "--fps", fps,
+          "Frame rate to resample to (default: the file's own; for glTF the keys' median spacing)")
+      ->check(CLI::Range(1.0 / 60.0, 1000.0));  // motion/limits.h: frame times up to 60 s
 }
 
 Result<motion::ImportOptions> ImportFlags::options() const {
@@ -41,6 +44,16 @@ Result<int> selectClip(const motion::MotionAsset& asset, const std::string& name
   }
   return Status::error(asset.path.string() + ": no animation named '" + name +
                        "'; the file has: " + names);
+}
+
+CLI::Validator wholeNumber() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const bool digits = !text.empty() && text.size() <= 19 &&
+                            text.find_first_not_of("0123456789") == std::string::npos;
+        return digits ? std::string() : "expected a whole number >= 0, got '" + text + "'";
+      },
+      "N >= 0");
 }
 
 int fail(const std::string& message) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "sinew/core/text.h"
 
 namespace sinew::app {
 namespace {
@@ -67,7 +68,7 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
                       {"triangles", mesh.indices.size() / 3}});
   }
   nlohmann::json info = {
-      {"file", asset.path.string()},
+      {"file", toUtf8(asset.path.string())},  // a path is bytes; JSON text is UTF-8
       {"format", asset.gltf ? "gltf" : "bvh"},
       {"joint_count", skeleton.jointCount()},
       {"end_site_count", end_sites},
@@ -157,7 +158,9 @@ int runInfo(const InfoArgs& args) {
     selected = clip.value();
   }
   if (args.json) {
-    std::cout << infoJson(asset.value(), selected).dump(2) << '\n';
+    std::cout << infoJson(asset.value(), selected)
+                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+              << '\n';
   } else {
     printText(asset.value(), selected, std::cout);
   }

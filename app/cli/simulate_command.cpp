@@ -2,6 +2,7 @@
 // rig's own motion unless --clip) on a chosen terrain, with scheduled pushes; reports whether and
 // when it fell, how far it went, how well it tracked and what it cost, and can write what it did
 // as BVH/glTF on the rig's skeleton and the figures as JSON.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "cli/commands.h"
 #include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
 #include "sinew/spectral/analysis.h"
@@ -47,24 +49,27 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
     footfalls.push_back({{"foot", r.feet[static_cast<size_t>(f.foot)]},
                          {"time_s", f.time_s},
                          {"position_m", {f.position.x, f.position.y, f.position.z}}});
-  return {{"rig", args.rig},
-          {"clip", args.clip.empty() ? args.rig : args.clip},
-          {"terrain", args.terrain},
-          {"feedback", !args.no_feedback},
-          {"seconds", r.seconds},
-          {"fell", r.fell},
-          {"fall_time_s", r.fell ? nlohmann::json(r.fall_time_s) : nlohmann::json(nullptr)},
-          {"fall_reason", r.fall_reason},
-          {"distance_m", r.distance_m},
-          {"speed_m_s", r.speed_m_s},
-          {"track_err_rad_rms", r.track_err_rad_rms},
-          {"energy_j", r.energy_j},
-          {"torque_sq_per_kg", r.torque_sq_per_kg},
-          {"min_uprightness", r.min_uprightness},
-          {"mass_kg", r.mass_kg},
-          {"pushed_impulse_ns", {r.pushed_impulse_ns.x, r.pushed_impulse_ns.y, r.pushed_impulse_ns.z}},
-          {"feet", feet},
-          {"footfalls", footfalls}};
+  return {
+      {"rig", toUtf8(args.rig)},
+      {"clip", toUtf8(args.clip.empty() ? args.rig : args.clip)},
+      {"terrain", args.terrain},
+      {"feedback", !args.no_feedback},
+      {"seconds", r.seconds},
+      {"fell", r.fell},
+      {"fall_time_s", r.fell ? r.fall_time_s : -1.0},  // -1: did not fall (never null)
+      {"fall_reason", r.fall_reason},
+      {"diverged", r.diverged},
+      {"diverged_reason", r.diverged_reason},
+      {"distance_m", r.distance_m},
+      {"speed_m_s", r.speed_m_s},
+      {"track_err_rad_rms", r.track_err_rad_rms},
+      {"energy_j", r.energy_j},
+      {"torque_sq_per_kg", r.torque_sq_per_kg},
+      {"min_uprightness", r.min_uprightness},
+      {"mass_kg", r.mass_kg},
+      {"pushed_impulse_ns", {r.pushed_impulse_ns.x, r.pushed_impulse_ns.y, r.pushed_impulse_ns.z}},
+      {"feet", feet},
+      {"footfalls", footfalls}};
 }
 
 int runSimulate(const SimulateArgs& args) {
@@ -83,16 +88,27 @@ int runSimulate(const SimulateArgs& args) {
   settings.tracking.feedback = !args.no_feedback;
   if (!args.controller_path.empty()) {
     // An evolved controller: its coefficients and its balance gains.
-    Result<search::ControllerFile> controller = search::loadController(args.controller_path, skeleton);
+    Result<search::ControllerFile> controller =
+        search::loadController(args.controller_path, skeleton);
     if (!controller.ok()) return fail(controller.message());
+    for (const std::string& warning : controller.value().warnings)
+      std::fprintf(stderr, "sinew: warning: %s\n", warning.c_str());
     rig.target = controller.value().target;
     rig.what = args.controller_path;
     settings.tracking.balance = controller.value().balance;
   }
   if (!args.balance.empty()) {
     if (args.balance.size() != 5)
-      return fail("--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO, got " +
-                  std::to_string(args.balance.size()));
+      return fail(
+          "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO, "
+          "got " +
+          std::to_string(args.balance.size()));
+    for (size_t i = 0; i < 4; ++i)
+      if (!(std::abs(args.balance[i]) <= search::kMaxBalanceGain))
+        return fail("--balance: value " + std::to_string(i + 1) +
+                    " is beyond the limit of +-100 (rad/m, rad/(m/s))");
+    if (!(args.balance[4] >= 0.0 && args.balance[4] <= 1.0))
+      return fail("--balance: TORSO (value 5) is a share from 0 to 1");
     physics::BalanceGains& b = settings.tracking.balance;
     b.cd_sagittal = args.balance[0];
     b.cv_sagittal = args.balance[1];
@@ -105,22 +121,27 @@ int runSimulate(const SimulateArgs& args) {
   const spectral::TargetMotion& target = rig.target;
   const std::string& what = rig.what;
 
-  std::printf("%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
-              "%.1f s on %s terrain, balance feedback %s\n",
-              args.rig.c_str(), plan.links.size(), plan.dofCount(),
-              plan.total_mass_kg, what.c_str(), target.period(), args.seconds,
-              physics::terrainKindName(settings.world.terrain.kind), args.no_feedback ? "off" : "on");
+  std::printf(
+      "%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
+      "%.1f s on %s terrain, balance feedback %s\n",
+      args.rig.c_str(), plan.links.size(), plan.dofCount(), plan.total_mass_kg, what.c_str(),
+      target.period(), args.seconds, physics::terrainKindName(settings.world.terrain.kind),
+      args.no_feedback ? "off" : "on");
   Result<physics::SimulationReport> run = physics::simulate(plan, skeleton, target, settings);
   if (!run.ok()) return fail(run.message());
   const physics::SimulationReport& r = run.value();
-  if (r.fell)
+  if (r.diverged)
+    std::printf("diverged at %.2f s: %s; figures up to then\n", r.fall_time_s,
+                r.diverged_reason.c_str());
+  else if (r.fell)
     std::printf("fell at %.2f s: %s\n", r.fall_time_s, r.fall_reason.c_str());
   else
     std::printf("stayed up for %.2f s\n", r.seconds);
-  std::printf("travelled %.2f m (%.2f m/s); tracking error %.2f deg RMS; energy %.0f J; "
-              "torque^2 %.0f N^2 m^2 s/kg\n",
-              r.distance_m, r.speed_m_s, r.track_err_rad_rms * 57.29577951308232, r.energy_j,
-              r.torque_sq_per_kg);
+  std::printf(
+      "travelled %.2f m (%.2f m/s); tracking error %.2f deg RMS; energy %.0f J; "
+      "torque^2 %.0f N^2 m^2 s/kg\n",
+      r.distance_m, r.speed_m_s, r.track_err_rad_rms * 57.29577951308232, r.energy_j,
+      r.torque_sq_per_kg);
   for (size_t f = 0; f < r.feet.size(); ++f)
     std::printf("  %-16s on the ground %3.0f%% of the time\n", r.feet[f].c_str(),
                 100.0 * r.contact_share[f]);
@@ -133,7 +154,9 @@ int runSimulate(const SimulateArgs& args) {
                 r.motion.fps());
   }
   if (!args.json_path.empty()) {
-    Status status = writeFileAtomically(args.json_path, reportJson(r, args).dump(2) + "\n");
+    Status status = writeFileAtomically(
+        args.json_path,
+        reportJson(r, args).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!status.ok()) return fail(status.message());
     std::printf("wrote %s\n", args.json_path.c_str());
   }
@@ -145,9 +168,11 @@ int runSimulate(const SimulateArgs& args) {
 void addSimulateCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SimulateArgs>();
   CLI::App* command = app.add_subcommand(
-      "simulate", "Make the rig's physical character track a clip's harmonic model with joint "
-                  "torques; report falls, distance, tracking error and energy");
-  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf); default: the bundled biped");
+      "simulate",
+      "Make the rig's physical character track a clip's harmonic model with joint "
+      "torques; report falls, distance, tracking error and energy");
+  command->add_option("--rig", args->rig,
+                      "The rig (.bvh, .glb, .gltf); default: the bundled biped");
   command->add_option("--clip", args->clip,
                       "The motion to track (same skeleton); default: the rig's own");
   command->add_option("--target", args->target_path,
@@ -165,9 +190,10 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
                       "joint's body (default the pelvis); repeatable");
   command->add_flag("--no-feedback", args->no_feedback,
                     "Pure Fourier control: no balance feedback");
-  command->add_option("--balance", args->balance,
-                      "Balance feedback gains CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
-                      "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1)")
+  command
+      ->add_option("--balance", args->balance,
+                   "Balance feedback gains CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
+                   "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1)")
       ->delimiter(',');
   command->add_flag("--from-standing", args->from_standing,
                     "Start standing at rest and blend into the motion over 1 s (default: start "

@@ -1,10 +1,13 @@
 #include "editor/preferences.h"
 
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 
 namespace sinew::editor {
 
@@ -54,7 +57,12 @@ Status savePreferences(const Preferences& preferences, const std::filesystem::pa
   std::filesystem::create_directories(path.parent_path(), ec);
   if (ec) return Status::error(path.parent_path().string() + ": cannot create: " + ec.message());
   const PanelLayout& l = preferences.layout;
-  const nlohmann::json json = {{"recent_files", preferences.recent_files},
+  // JSON text is UTF-8, and a path is bytes: one that is not UTF-8 (a Latin-1 file name) cannot
+  // be stored so that it opens again, so it is left out of the list rather than altered.
+  std::vector<std::string> recent;
+  for (const std::string& file : preferences.recent_files)
+    if (isValidUtf8(file)) recent.push_back(file);
+  const nlohmann::json json = {{"recent_files", recent},
                                {"window_width", preferences.window_width},
                                {"window_height", preferences.window_height},
                                {"layout",
@@ -65,7 +73,8 @@ Status savePreferences(const Preferences& preferences, const std::filesystem::pa
                                  {"body_fraction", l.body_fraction},
                                  {"evolve_fraction", l.evolve_fraction},
                                  {"spectrum_fraction", l.spectrum_fraction}}}};
-  return writeFileAtomically(path, json.dump(2) + "\n");
+  return writeFileAtomically(
+      path, json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace sinew::editor

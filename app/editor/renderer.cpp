@@ -270,15 +270,18 @@ Status Renderer::init(const std::filesystem::path& shader_dir) {
     programs_[spec.program] = program.value();
   }
 
-  // The capsule as drawn (520 triangles), then a coarse one (120) for the shadow map: the driver
-  // bins every triangle on the UI thread, and a shadow needs no smooth outline. The coarse
-  // capsule lies inside the fine one, so it never shadows the surface it stands for.
+  // The capsule as drawn (520 triangles), a coarse one (140) for the shadow map and for many
+  // capsules, and a minimal one (36) for very many (scene.h's budget): the driver bins every
+  // triangle on the UI thread, and a shadow needs no smooth outline. The coarser capsules lie
+  // inside the fine one, so they never shadow the surface they stand for.
   std::vector<CapsuleVertex> vertices;
   std::vector<unsigned> indices;
-  capsuleMesh(20, 6, vertices, indices);
-  capsule_index_count_ = static_cast<GLsizei>(indices.size());
-  capsuleMesh(10, 3, vertices, indices);
-  coarse_index_count_ = static_cast<GLsizei>(indices.size()) - capsule_index_count_;
+  const int detail_mesh[kCapsuleDetails][2] = {{20, 6}, {10, 3}, {6, 1}};
+  for (int d = 0; d < kCapsuleDetails; ++d) {
+    capsule_first_[d] = static_cast<GLsizei>(indices.size());
+    capsuleMesh(detail_mesh[d][0], detail_mesh[d][1], vertices, indices);
+    capsule_index_count_[d] = static_cast<GLsizei>(indices.size()) - capsule_first_[d];
+  }
   glGenVertexArrays(1, &capsule_vao_);
   glBindVertexArray(capsule_vao_);
   glGenBuffers(1, &capsule_vbo_);
@@ -519,10 +522,14 @@ void Renderer::setLighting(GLuint program, const OrbitCamera& camera, const Ligh
   setFloat(program, "u_shadow_size", static_cast<float>(kShadowMapSize));
 }
 
-void Renderer::drawCapsules(GLuint program, std::span<const CapsuleInstance> capsules,
+void Renderer::drawCapsules(GLuint program, std::span<const CapsuleInstance> all,
                             const glm::mat4& view_proj, bool translucent) {
-  if (capsules.empty()) return;
-  const bool coarse = program == programs_[kCapsuleDepth] && !translucent;
+  if (all.empty()) return;
+  const std::span<const CapsuleInstance> capsules = capsulesWithinBudget(all, capsule_scratch_);
+  const bool shadow = program == programs_[kCapsuleDepth] && !translucent;
+  const int detail = capsuleDetail(capsules.size(), shadow ? 1 : 0);
+  const GLsizei index_count = capsule_index_count_[detail];
+  const void* first = reinterpret_cast<const void*>(capsule_first_[detail] * sizeof(unsigned));
   glBindVertexArray(capsule_vao_);
   glBindBuffer(GL_ARRAY_BUFFER, instance_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(capsules.size_bytes()), capsules.data(),
@@ -536,26 +543,20 @@ void Renderer::drawCapsules(GLuint program, std::span<const CapsuleInstance> cap
     glUseProgram(depth);
     setMat4(depth, "u_view_proj", view_proj);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr, count);
+    glDrawElementsInstanced(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, first, count);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glUseProgram(program);
     setMat4(program, "u_view_proj", view_proj);
     glDepthFunc(GL_LEQUAL);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr, count);
+    glDrawElementsInstanced(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, first, count);
     glDisable(GL_BLEND);
     glDepthFunc(GL_LESS);
-  } else if (coarse) {
-    glUseProgram(program);
-    setMat4(program, "u_view_proj", view_proj);
-    glDrawElementsInstanced(GL_TRIANGLES, coarse_index_count_, GL_UNSIGNED_INT,
-                            reinterpret_cast<const void*>(capsule_index_count_ * sizeof(unsigned)),
-                            count);
   } else {
     glUseProgram(program);
     setMat4(program, "u_view_proj", view_proj);
-    glDrawElementsInstanced(GL_TRIANGLES, capsule_index_count_, GL_UNSIGNED_INT, nullptr, count);
+    glDrawElementsInstanced(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, first, count);
   }
   glBindVertexArray(0);
 }

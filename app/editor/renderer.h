@@ -91,8 +91,11 @@ class Renderer {
   GLuint capsule_vbo_ = 0;
   GLuint capsule_ebo_ = 0;
   GLuint instance_vbo_ = 0;
-  GLsizei capsule_index_count_ = 0;  // the fine capsule, first in the index buffer
-  GLsizei coarse_index_count_ = 0;   // the coarse one after it (the shadow pass)
+  // Per level of detail (scene.h: fine, coarse, minimal), where its indices start in the index
+  // buffer and how many there are.
+  GLsizei capsule_first_[kCapsuleDetails] = {};
+  GLsizei capsule_index_count_[kCapsuleDetails] = {};
+  std::vector<CapsuleInstance> capsule_scratch_;  // the capsules drawn when not all fit
   GLuint grid_vao_ = 0;
   GLuint shadow_fbo_ = 0;
   GLuint shadow_texture_ = 0;    // DEPTH_COMPONENT16, kShadowMapSize squared, compare mode

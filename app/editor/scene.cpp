@@ -108,13 +108,17 @@ void appendBones(const motion::Skeleton& skeleton, std::span<const glm::dmat4> w
     const int parent = skeleton.parents[j];
     if (parent != motion::kNoParent) {
       const glm::vec3 q = glm::vec3(world[parent][3]) + offset;
-      if (glm::length(p - q) > 1e-4f) out.push_back({q, radius, p, 0.0f, color});
+      // No thicker than half its length: a chain of many short bones (10,000 joints) would
+      // otherwise stack dozens of full-size capsules on every pixel (the renderer's cost).
+      const float length = glm::length(p - q);
+      if (length > 1e-4f) out.push_back({q, std::min(radius, 0.5f * length), p, 0.0f, color});
     } else {
       out.push_back({p, radius * 1.3f, p, 0.0f, color});  // the root: a ball
     }
     if (end_sites && skeleton.end_sites[j]) {
       const glm::vec3 e = glm::vec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0)) + offset;
-      if (glm::length(e - p) > 1e-4f) out.push_back({p, radius * 0.8f, e, 0.0f, color});
+      const float length = glm::length(e - p);
+      if (length > 1e-4f) out.push_back({p, std::min(radius * 0.8f, 0.5f * length), e, 0.0f, color});
     }
   }
 }
@@ -293,6 +297,28 @@ Scene buildScene(const EditorState& state) {
                 scene.xray.empty();
   if (scene.empty) scene.bounds_min = scene.bounds_max = scene.root;
   return scene;
+}
+
+int capsuleDetail(size_t count, int coarsest) {
+  int detail = std::clamp(coarsest, 0, kCapsuleDetails - 1);
+  while (detail + 1 < kCapsuleDetails && count * kCapsuleTriangles[detail] > kCapsuleTriangleBudget)
+    ++detail;
+  return detail;
+}
+
+std::span<const CapsuleInstance> capsulesWithinBudget(std::span<const CapsuleInstance> capsules,
+                                                      std::vector<CapsuleInstance>& scratch) {
+  const size_t most = kCapsuleTriangleBudget / kCapsuleTriangles[kCapsuleDetails - 1];
+  if (capsules.size() <= most) return capsules;
+  scratch.assign(capsules.begin(), capsules.end());
+  const auto size = [](const CapsuleInstance& c) {
+    return glm::length(c.b - c.a) + 2.0f * c.radius;
+  };
+  std::nth_element(
+      scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(most), scratch.end(),
+      [&](const CapsuleInstance& x, const CapsuleInstance& y) { return size(x) > size(y); });
+  scratch.resize(most);
+  return scratch;
 }
 
 int pickIndividual(const Scene& scene, const glm::vec3& origin, const glm::vec3& direction) {

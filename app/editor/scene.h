@@ -4,6 +4,7 @@
 // casts shadows, plus the bounds the camera frames and follows.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,21 @@ struct CapsuleInstance {
   float pad = 0.0f;        // keeps the GPU layout 16-byte aligned
   glm::vec4 color{1.0f};   // linear RGB and opacity
 };
+
+// Drawing many capsules within a bounded cost (a 10,000-joint file took a minute for 30 frames on
+// Mesa's software rasteriser, all in capsule triangles): each pass draws at most
+// kCapsuleTriangleBudget triangles, with the finest of the capsule meshes (kCapsuleTriangles,
+// fine to minimal) that fits, and beyond that only the largest capsules at the minimal mesh.
+inline constexpr int kCapsuleDetails = 3;
+inline constexpr size_t kCapsuleTriangles[kCapsuleDetails] = {520, 140, 36};
+inline constexpr size_t kCapsuleTriangleBudget = 200000;
+// The mesh (0 fine .. kCapsuleDetails - 1 minimal) for `count` capsules, `coarsest` or finer
+// than it at least (the shadow pass starts one coarser).
+int capsuleDetail(size_t count, int coarsest = 0);
+// The capsules to draw: all of them when the budget allows, else the largest (length plus
+// diameter) that fit at the minimal mesh, copied into `scratch`.
+std::span<const CapsuleInstance> capsulesWithinBudget(std::span<const CapsuleInstance> capsules,
+                                                      std::vector<CapsuleInstance>& scratch);
 
 // One individual of the population as drawn: its index in the snapshot and the box around its
 // capsules, for picking with the mouse.

@@ -1,5 +1,8 @@
 // The scene the viewport draws, built without a window: the display scale for centimetre rigs,
 // and a glTF character's skinned mesh posed exactly as its capsules are.
+#include <algorithm>
+#include <iostream>
+
 #include <gtest/gtest.h>
 
 #include "editor/scene.h"
@@ -118,6 +121,33 @@ TEST(EditorScene, FoxMeshFollowsTheCapsulesPose) {
             << worst * 1000.0 << " mm\n";
   EXPECT_GT(checked, 1000);
   EXPECT_LT(worst, 1e-5);  // metres: float rounding only, between frames too
+}
+
+// Many capsules stay within the triangle budget: coarser meshes first, then the largest only.
+TEST(SceneTest, ManyCapsulesAreDrawnWithinTheTriangleBudget) {
+  EXPECT_EQ(capsuleDetail(16 * 15), 0);     // 16 characters of 15 bodies: the fine capsule
+  EXPECT_EQ(capsuleDetail(16 * 15, 1), 1);  // the shadow pass starts coarse
+  EXPECT_EQ(capsuleDetail(1000), 1);
+  EXPECT_EQ(capsuleDetail(5000), 2);
+  std::vector<CapsuleInstance> capsules(10000);
+  for (size_t i = 0; i < capsules.size(); ++i) {
+    capsules[i].a = glm::vec3(0.0f);
+    capsules[i].b = glm::vec3(0.0f, 0.001f * static_cast<float>(i % 997), 0.0f);
+    capsules[i].radius = 0.01f;
+  }
+  capsules[1234].b.y = 50.0f;  // the largest: always kept
+  std::vector<CapsuleInstance> scratch;
+  const std::span<const CapsuleInstance> drawn = capsulesWithinBudget(capsules, scratch);
+  const size_t triangles = drawn.size() * kCapsuleTriangles[capsuleDetail(drawn.size())];
+  std::cout << capsules.size() << " capsules: " << drawn.size() << " drawn, " << triangles
+            << " triangles (budget " << kCapsuleTriangleBudget << ")\n";
+  EXPECT_LE(triangles, kCapsuleTriangleBudget);
+  EXPECT_GT(drawn.size(), 5000u);
+  EXPECT_NE(std::find_if(drawn.begin(), drawn.end(),
+                         [](const CapsuleInstance& c) { return c.b.y == 50.0f; }),
+            drawn.end());
+  const std::vector<CapsuleInstance> few(100);
+  EXPECT_EQ(capsulesWithinBudget(few, scratch).size(), 100u);
 }
 
 }  // namespace

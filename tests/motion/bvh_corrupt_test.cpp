@@ -133,13 +133,13 @@ const std::vector<Corruption>& corruptions() {
          l[n] = "Frames: 0";
          return n;
        }},
-      {"negative frame time", "frame time must be positive",
+      {"negative frame time", "frame time must be from 0.0001 to 60 seconds",
        [](Lines& l) {
          const int n = lineStarting(l, "Frame Time");
          l[n] = "Frame Time: -0.0333333";
          return n;
        }},
-      {"zero frame time", "frame time must be positive",
+      {"zero frame time", "frame time must be from 0.0001 to 60 seconds",
        [](Lines& l) {
          const int n = lineStarting(l, "Frame Time");
          l[n] = "Frame Time:\t0";

@@ -737,6 +737,13 @@ TEST(GltfCorruptTest, RefusesBadFilesNamingTheFileAndTheField) {
     b.doc["skins"] = json::array({{{"joints", json::array({0, 4})}}});
     expectRefused(b.write(dir, "skin.gltf"), "skin 0: joint node 4 does not exist");
   }
+  {  // a skin with no joints (was "has no nodes")
+    DocBuilder b;
+    b.doc["nodes"] = json::array({json::object()});
+    b.doc["skins"] = json::array({{{"joints", json::array()}}});
+    expectRefused(b.write(dir, "empty_skin.gltf"),
+                  "skin 0 has no joints, so there is no skeleton to import");
+  }
   ImportOptions options;
   options.fps = 0.0;
   expectRefused(curvesDocument().write(dir, "fps.gltf"), "fps", options);

@@ -29,7 +29,10 @@ TEST(TargetMotionTest, RefusesInvalidTargets) {
   EXPECT_NE(bad.validate(skeleton).message().find("twice"), std::string::npos);
   bad = walk.target;
   bad.channels.front().terms.push_back({0, 1.0, 0.0});
-  EXPECT_NE(bad.validate(skeleton).message().find("n >= 1"), std::string::npos);
+  EXPECT_NE(bad.validate(skeleton).message().find("n in 1..1024"), std::string::npos);
+  bad = walk.target;
+  bad.channels.front().terms.push_back({1025, 1.0, 0.0});  // sizes buffers: 1e9 was a hang
+  EXPECT_NE(bad.validate(skeleton).message().find("n in 1..1024"), std::string::npos);
   bad = walk.target;
   bad.base_rotations.pop_back();
   EXPECT_FALSE(bad.validate(skeleton).ok());

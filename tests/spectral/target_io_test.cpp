@@ -53,3 +53,81 @@ TEST(TargetIoTest, SavedCoefficientsLoadBackToTheSameMotion) {
 
 }  // namespace
 }  // namespace sinew::spectral
+
+namespace sinew::spectral {
+namespace {
+
+// The walk's coefficients with the first harmonic's "n" (of channel 0) written as `n`.
+std::string withFirstN(const std::string& text, const std::string& n) {
+  std::string out = text;
+  const size_t at = out.find("\"n\": ");
+  const size_t end = out.find_first_of(",\n}", at);
+  return out.replace(at, end - at, "\"n\": " + n);
+}
+
+TEST(TargetIoTest, HarmonicIndicesAreWholeNumbersWithinTheLimit) {
+  const Walk walk = bundledWalk();
+  const std::string text = targetToJson(walk.target, walk.asset.skeleton);
+  // 1e9 used to allocate 16 GB (a hang); 1.5 was read as 1.
+  for (const char* bad : {"1e9", "100000000", "1.5", "0", "-3", "\"2\""}) {
+    Result<TargetMotion> r = targetFromJson(withFirstN(text, bad), walk.asset.skeleton, "t.json");
+    ASSERT_FALSE(r.ok()) << bad;
+    EXPECT_EQ(r.message(),
+              "t.json: channels[0].harmonics[0].n: expected a whole number from 1 to 1024")
+        << bad;
+  }
+  EXPECT_TRUE(targetFromJson(withFirstN(text, "1024"), walk.asset.skeleton, "t.json").ok());
+}
+
+TEST(TargetIoTest, NumbersBeyondTheLimitsAreRefused) {
+  const Walk walk = bundledWalk();
+  const std::string text = targetToJson(walk.target, walk.asset.skeleton);
+  std::string huge = text;
+  const size_t at = huge.find("\"amplitude\": ");
+  huge.replace(at, huge.find(',', at) - at, "\"amplitude\": 1e300");
+  Result<TargetMotion> r = targetFromJson(huge, walk.asset.skeleton, "t.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("needs n in 1..1024, an amplitude in [0, 1e6]"), std::string::npos)
+      << r.message();
+  std::string omega = text;
+  const size_t o = omega.find("\"omega0_rad_s\": ");
+  omega.replace(o, omega.find(',', o) - o, "\"omega0_rad_s\": 1e300");
+  EXPECT_NE(targetFromJson(omega, walk.asset.skeleton, "t.json").message().find("omega0"),
+            std::string::npos);
+}
+
+TEST(TargetIoTest, JointsAreMatchedByNameAndHierarchy) {
+  const Walk walk = bundledWalk();
+  const std::string text = targetToJson(walk.target, walk.asset.skeleton);
+  motion::Skeleton other = walk.asset.skeleton;
+  other.parents[5] = 0;  // same names, another tree
+  Result<TargetMotion> r = targetFromJson(text, other, "t.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.message(), "t.json: joints[5].parent: expected 'Hips', found '" +
+                             walk.asset.skeleton.names[4] +
+                             "' (the coefficients are for a rig with another hierarchy)");
+}
+
+TEST(TargetIoTest, UnknownKeysAreWarningsNamingTheField) {
+  const Walk walk = bundledWalk();
+  std::string text = targetToJson(walk.target, walk.asset.skeleton);
+  text.replace(text.find("\"format\""), 8, "\"omega_0\": 3, \"format\"");
+  std::vector<std::string> warnings;
+  Result<TargetMotion> r = targetFromJson(text, walk.asset.skeleton, "t.json", &warnings);
+  ASSERT_TRUE(r.ok()) << r.message();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "t.json: unknown key 'omega_0' (ignored)");
+}
+
+TEST(TargetIoTest, ByteOrderMarkAndMissingFieldsGiveClearMessages) {
+  const Walk walk = bundledWalk();
+  const std::string text = targetToJson(walk.target, walk.asset.skeleton);
+  EXPECT_TRUE(targetFromJson("\xEF\xBB\xBF" + text, walk.asset.skeleton, "t.json").ok());
+  EXPECT_EQ(
+      targetFromJson(R"({"format":"sinew.target","version":1})", walk.asset.skeleton, "t.json")
+          .message(),
+      "t.json: omega0_rad_s: expected a number");
+}
+
+}  // namespace
+}  // namespace sinew::spectral

@@ -7,8 +7,10 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "sinew/core/text.h"
 #include "sinew/motion/bvh.h"
 #include "sinew/motion/anatomy.h"
+#include "sinew/motion/limits.h"
 
 namespace sinew::motion {
 namespace {
@@ -62,6 +64,10 @@ bool parseNumber(std::string_view word, double& value) {
   const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
   return error == std::errc() && end == word.data() + word.size() && std::isfinite(value);
 }
+
+// Offsets and channel values (file units or degrees) beyond this are refused: 1 km in mm,
+// 10 km in cm, and far past any unwrapped angle. It keeps every value within float range.
+constexpr double kMaxValue = 1e6;
 
 std::string quoted(std::string_view word) {
   constexpr size_t kMaxShown = 40;
@@ -167,6 +173,11 @@ class BvhParser {
           name += tokens_[at++].word;
         }
         if (name.empty()) return fail(line, "expected a joint name after " + std::string(word));
+        if (const int c = firstControlCharacter(name); c >= 0) {
+          return fail(line, "joint name " + quoted(std::string_view(name)) +
+                                " holds control character " + std::to_string(c) +
+                                "; names must be printable text");
+        }
         if (!names_.insert(name).second) {
           return fail(line, "duplicate joint name '" + name + "'; joint names must be unique");
         }
@@ -259,6 +270,10 @@ class BvhParser {
         return fail(lineNumber(keyword), "expected a number for " + what + ", found " +
                                              quoted(tokens_[at].word));
       }
+      if (std::abs(out[n]) > kMaxValue) {
+        return fail(lineNumber(keyword), what + ": " + quoted(tokens_[at].word) +
+                                             " is beyond the limit of 1e6 (file units)");
+      }
       ++at;
     }
     return {};
@@ -341,8 +356,9 @@ class BvhParser {
     if (w.size() != 3 || w[0] != "Frame" || w[1] != "Time:" || !parseNumber(w[2], frame_time_)) {
       return fail(lines_[l].number, "expected 'Frame Time: t' with t in seconds");
     }
-    if (!(frame_time_ > 0.0)) {
-      return fail(lines_[l].number, "frame time must be positive, found " + quoted(w[2]));
+    if (!(frame_time_ >= kMinFrameTime_s && frame_time_ <= kMaxFrameTime_s)) {
+      return fail(lines_[l].number,
+                  "frame time must be from 0.0001 to 60 seconds, found " + quoted(w[2]));
     }
     ++l;
     values_.clear();
@@ -370,6 +386,11 @@ class BvhParser {
                                             quoted(word) + " is not a number (value " +
                                             std::to_string(count + 1) + " of " +
                                             std::to_string(channel_count_) + ")");
+        }
+        if (std::abs(value) > kMaxValue) {
+          return fail(lines_[l].number, "frame " + std::to_string(frame + 1) + ": " + quoted(word) +
+                                            " (value " + std::to_string(count + 1) +
+                                            ") is beyond the limit of 1e6 (file units or degrees)");
         }
         if (static_cast<int>(count) < channel_count_) values_.push_back(value);
         ++count;
@@ -451,7 +472,7 @@ class BvhParser {
     std::string stem(source_);
     if (const size_t slash = stem.find_last_of('/'); slash != std::string::npos) stem.erase(0, slash + 1);
     if (const size_t dot = stem.rfind('.'); dot != std::string::npos) stem.erase(dot);
-    clip.name = stem;
+    clip.name = toUtf8(stem);  // a path is bytes; a name is text
     asset.skeleton = std::move(skeleton_);
     asset.clips.push_back(std::move(clip));
     return asset;
@@ -473,7 +494,8 @@ class BvhParser {
 
 Result<MotionAsset> readBvh(std::string_view text, std::string_view source_name,
                             const ImportOptions& options) {
-  BvhParser parser(text, source_name);
+  const std::string utf8 = textAsUtf8(text);  // names are UTF-8 whatever the file's encoding
+  BvhParser parser(utf8, source_name);
   return parser.run(options);
 }
 

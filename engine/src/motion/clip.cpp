@@ -5,12 +5,14 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "sinew/motion/limits.h"
+
 namespace sinew::motion {
 
 Status Clip::validate(const Skeleton& skeleton) const {
   const std::string label = "clip '" + name + "'";
-  if (!(frame_time > 0.0) || !std::isfinite(frame_time)) {
-    return Status::error(label + ": frame time must be a positive number of seconds");
+  if (!(frame_time >= kMinFrameTime_s && frame_time <= kMaxFrameTime_s)) {
+    return Status::error(label + ": frame time must be from 0.0001 to 60 seconds");
   }
   if (frame_count < 1) return Status::error(label + ": has no frames");
   if (joint_count != skeleton.jointCount()) {
@@ -29,6 +31,11 @@ Status Clip::validate(const Skeleton& skeleton) const {
         !std::isfinite(t.z)) {
       return Status::error(label + ": frame " + std::to_string(n / joint_count) + ", joint '" +
                            skeleton.names[n % joint_count] + "': not a finite pose");
+    }
+    if (!withinLength(t) || (!scales.empty() && !withinScale(scales[n]))) {
+      return Status::error(label + ": frame " + std::to_string(n / joint_count) + ", joint '" +
+                           skeleton.names[n % joint_count] +
+                           "': translation or scale beyond the limit of 1e6 (metres)");
     }
   }
   return {};

@@ -10,6 +10,7 @@
 
 #include "gltf_common.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/motion/gltf.h"
 
 namespace sinew::motion {
@@ -118,6 +119,8 @@ Result<std::vector<int>> selectJointNodes(const Context& ctx, const NodeTree& tr
     }
   }
   if (!model.skins.empty()) {
+    if (model.skins[0].joints.empty())
+      return ctx.fail("skin 0 has no joints, so there is no skeleton to import");
     for (int node : model.skins[0].joints) {
       if (node < 0 || node >= n) {
         return ctx.fail("skin 0: joint node " + std::to_string(node) + " does not exist");
@@ -160,12 +163,21 @@ Result<std::vector<int>> selectJointNodes(const Context& ctx, const NodeTree& tr
   return order;
 }
 
+// A name as UTF-8 text without control characters (a NUL would cut it short in a writer).
+std::string printableName(const std::string& raw) {
+  std::string name = toUtf8(raw);
+  for (char& c : name) {
+    if (firstControlCharacter(std::string_view(&c, 1)) >= 0) c = '_';
+  }
+  return name;
+}
+
 // Joint names are unique, non-empty and free of whitespace (BVH export writes them as words).
 std::vector<std::string> jointNames(const Model& model, const std::vector<int>& nodes) {
   std::vector<std::string> names;
   std::unordered_set<std::string> taken;
   for (int node : nodes) {
-    std::string name = model.nodes[node].name;
+    std::string name = printableName(model.nodes[node].name);
     for (char& c : name) {
       if (std::isspace(static_cast<unsigned char>(c))) c = '_';
     }
@@ -497,6 +509,27 @@ Result<Curve> readCurve(const Context& ctx, const tinygltf::AnimationSampler& sa
   return curve;
 }
 
+// A frame time that close to a whole number of frames per second (23.9999993) becomes it.
+double wholeRate(double frame_time) {
+  const double fps = std::round(1.0 / frame_time);
+  if (fps >= 1.0 && std::abs(1.0 / frame_time - fps) <= 2e-7 * fps) return 1.0 / fps;
+  return frame_time;
+}
+
+// The spacing of keys that are evenly spaced (what every exporter writes, Sinew included): the
+// whole span over the key count, when every key lies within float32 rounding of its place on
+// that grid; else 0. Late in a long clip float32 times step by 6e-5 s (t = 666 s), so single
+// spacings are off by 0.2% while the span stays exact to 1e-9 (20,000 frames at 30 fps).
+double uniformSpacing(const std::vector<double>& times) {
+  const double step = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+  if (!(step > 0.0)) return 0.0;
+  for (size_t k = 0; k < times.size(); ++k) {
+    const double expected = times.front() + static_cast<double>(k) * step;
+    if (std::abs(times[k] - expected) > keyTolerance(expected)) return 0.0;
+  }
+  return step;
+}
+
 // Seconds per frame: the requested rate, else the median key spacing. Key times are float32,
 // which puts each spacing off by up to a few 1e-6 relative, so the median is refined to the mean
 // of the spacings that agree with it (over a run of keys that is the run's length over its key
@@ -505,6 +538,7 @@ Result<Curve> readCurve(const Context& ctx, const tinygltf::AnimationSampler& sa
 double frameTimeFor(const std::vector<double>& times, const ImportOptions& options) {
   if (options.fps) return 1.0 / *options.fps;
   if (times.size() < 2) return 1.0 / 30.0;  // a single pose: any rate gives one frame
+  if (const double uniform = uniformSpacing(times); uniform > 0.0) return wholeRate(uniform);
   std::vector<double> spacing;
   for (size_t k = 1; k < times.size(); ++k) spacing.push_back(times[k] - times[k - 1]);
   std::sort(spacing.begin(), spacing.end());
@@ -519,17 +553,15 @@ double frameTimeFor(const std::vector<double>& times, const ImportOptions& optio
       ++agreeing;
     }
   }
-  const double frame_time = agreeing > 0 ? sum / agreeing : median;
-  const double fps = std::round(1.0 / frame_time);
-  if (fps >= 1.0 && std::abs(1.0 / frame_time - fps) <= 2e-7 * fps) return 1.0 / fps;
-  return frame_time;
+  return wholeRate(agreeing > 0 ? sum / agreeing : median);
 }
 
 Result<Clip> readAnimation(const Context& ctx, int index, const Skeleton& skeleton,
                            const std::vector<int>& joint_of_node, const ImportOptions& options) {
   const tinygltf::Animation& animation = ctx.model.animations[index];
   Clip clip;
-  clip.name = animation.name.empty() ? "animation_" + std::to_string(index) : animation.name;
+  clip.name =
+      animation.name.empty() ? "animation_" + std::to_string(index) : printableName(animation.name);
   const std::string label = "animation '" + clip.name + "'";
 
   struct Track {
@@ -698,20 +730,22 @@ Result<MotionAsset> importModel(const Model& model, const std::string& file,
 
 }  // namespace
 
-Result<MotionAsset> loadGltf(const std::filesystem::path& path, const ImportOptions& options) {
+Result<MotionAsset> readGltf(std::string bytes, const std::filesystem::path& path,
+                             const ImportOptions& options) {
   const std::string file = path.string();
   if (options.fps && !(*options.fps > 0.0 && *options.fps <= 1000.0)) {
     return Status::error(file + ": fps must be in (0, 1000], got " + std::to_string(*options.fps));
   }
-  Result<std::string> bytes = readFile(path);
-  if (!bytes.ok()) return bytes.status();
-  const bool binary = gltf::isGlb(bytes.value());
+  const bool binary = gltf::isGlb(bytes);
+  // A .gltf is JSON text: a byte-order mark is dropped and Latin-1 text converted, as for every
+  // reader (the spec asks for UTF-8; the .glb's JSON chunk is left as it is and refused if not).
+  if (!binary) bytes = textAsUtf8(bytes);
   try {  // allocation failure on a huge file, or a tinygltf surprise: an error, never a crash
-    Result<Model> model = gltf::parseDocument(bytes.value(), binary, path.parent_path(), file,
-                                              gltf::ImageBytes::kSkip);
+    Result<Model> model =
+        gltf::parseDocument(bytes, binary, path.parent_path(), file, gltf::ImageBytes::kSkip);
     if (!model.ok()) return model.status();
     GltfSource source;
-    source.bytes = std::move(bytes).value();
+    source.bytes = std::move(bytes);
     source.binary = binary;
     source.directory = path.parent_path();
     Result<MotionAsset> asset = importModel(model.value(), file, options, std::move(source));
@@ -720,6 +754,12 @@ Result<MotionAsset> loadGltf(const std::filesystem::path& path, const ImportOpti
   } catch (const std::exception& e) {
     return Status::error(file + ": " + e.what());
   }
+}
+
+Result<MotionAsset> loadGltf(const std::filesystem::path& path, const ImportOptions& options) {
+  Result<std::string> bytes = readFile(path);
+  if (!bytes.ok()) return bytes.status();
+  return readGltf(std::move(bytes).value(), path, options);
 }
 
 }  // namespace sinew::motion

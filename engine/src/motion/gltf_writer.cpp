@@ -15,6 +15,7 @@
 
 #include "gltf_common.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/motion/gltf.h"
 
 namespace sinew::motion {
@@ -262,6 +263,10 @@ Result<Model> withNewAnimation(const GltfSource& source, const Skeleton& skeleto
     // Animated nodes must use TRS, not a matrix (glTF 2.0, 3.7.2.1); the rest values are the
     // matrix's decomposition.
     tinygltf::Node& target = model.nodes[node];
+    // A name the reader had to clean (a control character, a NUL that cuts it short, not UTF-8)
+    // is written as the joint's name, so the file reads back with the same skeleton.
+    if (firstControlCharacter(target.name) >= 0 || !isValidUtf8(target.name))
+      target.name = skeleton.names[j];
     if (!target.matrix.empty()) {
       const glm::dvec3& t = skeleton.offsets[j];
       const glm::dquat& r = skeleton.rest_rotations[j];
@@ -465,6 +470,23 @@ Model newRig(const Skeleton& skeleton, const Clip& clip) {
   return model;
 }
 
+// glTF key times are float32: frames whose times round to the same float (a long clip at a very
+// high rate) would be read back as fewer frames, so such a clip is refused before writing.
+// Validated clips keep every other value within float range (kMaxLength_m, kMaxScale).
+Status floatTimesDistinct(const Clip& clip) {
+  float previous = 0.0f;
+  for (int f = 1; f < clip.frame_count; ++f) {
+    const float t = static_cast<float>(f * clip.frame_time);
+    if (!(t > previous)) {
+      return Status::error("frames " + std::to_string(f - 1) + " and " + std::to_string(f) +
+                           " fall on the same float32 key time (" + std::to_string(t) +
+                           " s): too many frames at this rate for glTF");
+    }
+    previous = t;
+  }
+  return {};
+}
+
 }  // namespace
 
 Status saveGltf(const std::filesystem::path& path, const MotionAsset& asset, const Clip& clip) {
@@ -480,6 +502,9 @@ Status saveGltf(const std::filesystem::path& path, const MotionAsset& asset, con
     return Status::error(file + ": cannot export: " + status.message());
   }
   if (Status status = clip.validate(asset.skeleton); !status.ok()) {
+    return Status::error(file + ": cannot export: " + status.message());
+  }
+  if (Status status = floatTimesDistinct(clip); !status.ok()) {
     return Status::error(file + ": cannot export: " + status.message());
   }
   std::string bytes;

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "sinew/motion/limits.h"
+
 namespace sinew::motion {
 namespace {
 
@@ -12,7 +14,18 @@ bool finite(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+bool within(const glm::dvec3& v, double limit) {
+  return std::abs(v.x) <= limit && std::abs(v.y) <= limit && std::abs(v.z) <= limit;
+}
+
 }  // namespace
+
+bool withinLength(const glm::dvec3& v) {
+  return within(v, kMaxLength_m);
+}
+bool withinScale(const glm::dvec3& v) {
+  return within(v, kMaxScale);
+}
 
 const char* channelName(ChannelType type) {
   switch (type) {
@@ -94,6 +107,12 @@ Status Skeleton::validate() const {
     if (!finite(offsets[j]) || !finite(rest_scales[j]) ||
         (end_sites[j] && !finite(*end_sites[j]))) {
       return Status::error(label + ": offset, scale or end site is not a finite number");
+    }
+    if (!withinLength(offsets[j]) || (end_sites[j] && !withinLength(*end_sites[j])) ||
+        !withinScale(rest_scales[j])) {
+      return Status::error(
+          label +
+          ": offset, scale or end site beyond the limit of 1e6 (metres, or times for a scale)");
     }
     const glm::dquat& q = rest_rotations[j];
     if (!(std::abs(glm::length(q) - 1.0) < 1e-6)) {

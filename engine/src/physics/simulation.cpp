@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "sinew/physics/controller.h"
+#include "sinew/physics/divergence.h"
 
 namespace sinew::physics {
 namespace {
@@ -48,9 +49,10 @@ Status SimulationSettings::validate() const {
     return Status::error("fall_height_ratio must be in (0, 1)");
   for (size_t i = 0; i < pushes.size(); ++i) {
     const Push& p = pushes[i];
-    if (!(std::isfinite(p.time_s) && p.time_s >= 0.0) || !std::isfinite(p.impulse_ns.x) ||
-        !std::isfinite(p.impulse_ns.y) || !std::isfinite(p.impulse_ns.z))
-      return Status::error("pushes[" + std::to_string(i) + "]: time must be >= 0, impulse finite");
+    if (!(std::isfinite(p.time_s) && p.time_s >= 0.0) ||
+        !(glm::length(p.impulse_ns) <= kMaxPushImpulse_ns))
+      return Status::error("pushes[" + std::to_string(i) +
+                           "]: time must be >= 0 s, impulse at most 10000 N s");
   }
   return Status();
 }
@@ -169,6 +171,8 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   double error_sum = 0.0;
   long long error_count = 0;
   std::vector<char> pushed(settings.pushes.size(), 0);
+  double pushed_ns = 0.0;       // magnitudes of the impulses delivered, N s
+  glm::dvec3 last_com = start;  // of the last state that did not diverge
   std::unique_ptr<FourierTargets> reference;
   std::vector<glm::dquat> reference_pose(joints);
   LinkPose reference_links;
@@ -189,15 +193,19 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
       if (!pushed[p] && world.time() + 0.5 * world.dt() >= settings.pushes[p].time_s) {
         pushed[p] = 1;
         if (Status s = world.push(push_links[p], settings.pushes[p].impulse_ns); !s.ok()) return s;
+        pushed_ns += glm::length(settings.pushes[p].impulse_ns);
       }
     controller.update(world);
     world.step(zero);
-    if (!world.finite()) {
+    if (std::string why = divergence(world, pushed_ns); !why.empty()) {
+      report.diverged = true;  // no figure below comes from this state or later
+      report.diverged_reason = std::move(why);
       report.fell = true;
       report.fall_time_s = world.time();
-      report.fall_reason = "the simulation diverged (a non-finite state)";
+      report.fall_reason = "the simulation diverged: " + report.diverged_reason;
       break;
     }
+    last_com = world.centreOfMass();
 
     // Tracking error against the motion's target, energy and torques.
     const LinkPose now = world.jointPositions();
@@ -246,6 +254,10 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
           report.fall_reason = plan.links[li].name + " touched the ground";
           break;
         }
+      if (!report.fell && up.y < 0.0) {
+        report.fell = true;
+        report.fall_reason = "turned over (the pelvis upside down)";
+      }
       const double height = com.y - world.groundHeight(com.x, com.z);
       if (!report.fell && height < settings.fall_height_ratio * start_height) {
         std::ostringstream reason;
@@ -267,7 +279,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     }
   }
   report.seconds = world.time();
-  const glm::dvec3 end = world.centreOfMass();
+  const glm::dvec3 end = report.diverged ? last_com : world.centreOfMass();
   report.distance_m = glm::length(glm::dvec2(end.x - start.x, end.z - start.z));
   report.speed_m_s = report.seconds > 0.0 ? report.distance_m / report.seconds : 0.0;
   report.track_err_rad_rms = error_count > 0 ? std::sqrt(error_sum / static_cast<double>(error_count)) : 0.0;

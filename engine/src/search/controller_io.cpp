@@ -2,8 +2,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <initializer_list>
+
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/spectral/target_io.h"
+#include "state_json.h"
 
 namespace sinew::search {
 
@@ -12,8 +17,8 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
   const nlohmann::json json = {
       {"format", "sinew.controller"},
       {"version", 1},
-      {"rig", c.rig},
-      {"clip", c.clip},
+      {"rig", toUtf8(c.rig)},  // paths are bytes; JSON text is UTF-8
+      {"clip", toUtf8(c.clip)},
       {"target", nlohmann::json::parse(spectral::targetToJson(c.target, skeleton))},
       {"balance",
        {{"cd_sagittal", c.balance.cd_sagittal},
@@ -28,54 +33,113 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
         {"optimizer", c.optimizer},
         {"no_prior", c.no_prior}}},
       {"fitness", fitnessJson(c.fitness)}};
-  return writeFileAtomically(path, json.dump(2) + "\n");
+  return writeFileAtomically(
+      path, json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
+
+namespace {
+
+// Keys of `object` not in `known`, as warnings naming the file and the key.
+void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*> known,
+                 const std::string& where, std::vector<std::string>& warnings) {
+  if (!object.is_object()) return;
+  for (const auto& item : object.items()) {
+    bool found = false;
+    for (const char* k : known) found = found || item.key() == k;
+    if (!found) warnings.push_back(where + ": unknown key '" + item.key() + "' (ignored)");
+  }
+}
+
+Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
+  using namespace state_json;
+  Result<const nlohmann::json*> b = field(json, "balance", name);
+  if (!b.ok()) return b.status();
+  const std::string where = name + ": balance";
+  unknownKeys(*b.value(), {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso"},
+              where, c.warnings);
+  double* gains[4] = {&c.balance.cd_sagittal, &c.balance.cv_sagittal, &c.balance.cd_coronal,
+                      &c.balance.cv_coronal};
+  const char* keys[4] = {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal"};
+  for (int i = 0; i < 4; ++i) {
+    if (Status s = readNumber(*b.value(), keys[i], where, *gains[i]); !s.ok()) return s;
+    if (!(std::abs(*gains[i]) <= kMaxBalanceGain))
+      return Status::error(where + ": " + keys[i] + ": beyond the limit of +-100");
+  }
+  if (Status s = readNumber(*b.value(), "torso", where, c.balance.torso); !s.ok()) return s;
+  if (!(c.balance.torso >= 0.0 && c.balance.torso <= 1.0))
+    return Status::error(where + ": torso: expected a share from 0 to 1");
+  return {};
+}
+
+Status readSettings(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
+  using namespace state_json;
+  Result<const nlohmann::json*> found = field(json, "settings", name);
+  if (!found.ok()) return found.status();
+  const nlohmann::json& s = *found.value();
+  const std::string where = name + ": settings";
+  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior"}, where, c.warnings);
+  if (Status st = readNumber(s, "window_s", where, c.window_s); !st.ok()) return st;
+  if (!(c.window_s > 0.0 && c.window_s <= 3600.0))
+    return Status::error(where + ": window_s: expected seconds in (0, 3600]");
+  if (Status st = readString(s, "terrain", where, c.terrain); !st.ok()) return st;
+  if (Status st = readUint64(s, "seed", where, c.seed); !st.ok()) return st;
+  if (Status st = readString(s, "optimizer", where, c.optimizer); !st.ok()) return st;
+  return readBool(s, "no_prior", where, c.no_prior);
+}
+
+}  // namespace
 
 Result<ControllerFile> loadController(const std::filesystem::path& path,
                                       const motion::Skeleton& skeleton) {
   Result<std::string> text = readFile(path);
   if (!text.ok()) return text.status();
-  const std::string name = path.string();
-  try {
-    const nlohmann::json json = nlohmann::json::parse(text.value());
-    if (json.value("format", "") != "sinew.controller")
-      return Status::error(name + ": format: expected \"sinew.controller\" (a best.json from "
-                                  "sinew evolve)");
-    if (json.at("version").get<int>() != 1)
-      return Status::error(name + ": version: " + json.at("version").dump() + " is not 1");
+  return controllerFromJson(text.value(), skeleton, path.string());
+}
+
+Result<ControllerFile> controllerFromJson(std::string_view text, const motion::Skeleton& skeleton,
+                                          const std::string& name) {
+  try {  // nothing below throws on purpose; a library surprise still becomes a message
+    const nlohmann::json json = nlohmann::json::parse(withoutBom(text), nullptr, false);
+    if (json.is_discarded() || !json.is_object())
+      return Status::error(name + ": not valid JSON (a sinew.controller object)");
+    if (json.value("format", nlohmann::json()) != "sinew.controller")
+      return Status::error(name +
+                           ": format: expected \"sinew.controller\" (a best.json from "
+                           "sinew evolve)");
+    int version = 0;
+    if (Status s = state_json::readInt(json, "version", name, 1, 1, version); !s.ok()) return s;
     ControllerFile c;
-    Result<spectral::TargetMotion> target =
-        spectral::targetFromJson(json.at("target").dump(), skeleton, name + ": target");
+    unknownKeys(json,
+                {"format", "version", "rig", "clip", "target", "balance", "settings", "fitness"},
+                name, c.warnings);
+    if (!json.contains("target"))
+      return Status::error(name +
+                           ": target: missing (the controller's coefficients; a best.json "
+                           "from sinew evolve has them)");
+    Result<spectral::TargetMotion> target = spectral::targetFromJson(
+        json.at("target").dump(), skeleton, name + ": target", &c.warnings);
     if (!target.ok()) return target.status();
     c.target = std::move(target).value();
-    const nlohmann::json& b = json.at("balance");
-    c.balance.cd_sagittal = b.at("cd_sagittal").get<double>();
-    c.balance.cv_sagittal = b.at("cv_sagittal").get<double>();
-    c.balance.cd_coronal = b.at("cd_coronal").get<double>();
-    c.balance.cv_coronal = b.at("cv_coronal").get<double>();
-    c.balance.torso = b.at("torso").get<double>();
-    const nlohmann::json& s = json.at("settings");
-    c.window_s = s.at("window_s").get<double>();
-    c.terrain = s.at("terrain").get<std::string>();
-    c.seed = s.at("seed").get<std::uint64_t>();
-    c.optimizer = s.at("optimizer").get<std::string>();
-    c.no_prior = s.at("no_prior").get<bool>();
+    if (Status s = readBalance(json, name, c); !s.ok()) return s;
+    if (Status s = readSettings(json, name, c); !s.ok()) return s;
     if (json.contains("fitness")) {
       Result<FitnessTerms> fitness = fitnessFromJson(json.at("fitness"));
       if (!fitness.ok()) return Status::error(name + ": fitness: " + fitness.message());
       c.fitness = fitness.value();
     }
-    c.rig = json.value("rig", "");
-    c.clip = json.value("clip", "");
+    if (json.contains("rig") && !state_json::readString(json, "rig", name, c.rig).ok())
+      return Status::error(name + ": rig: expected a string");
+    if (json.contains("clip") && !state_json::readString(json, "clip", name, c.clip).ok())
+      return Status::error(name + ": clip: expected a string");
     return c;
-  } catch (const nlohmann::json::exception& e) {
+  } catch (const std::exception& e) {
     return Status::error(name + ": " + e.what());
   }
 }
 
-Status exportBest(const Problem& problem, std::span<const double> point, const FitnessTerms& fitness,
-                  const motion::MotionAsset& rig, const std::filesystem::path& dir,
-                  ControllerFile meta) {
+Status exportBest(const Problem& problem, std::span<const double> point,
+                  const FitnessTerms& fitness, const motion::MotionAsset& rig,
+                  const std::filesystem::path& dir, ControllerFile meta) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Status::error(dir.string() + ": cannot create the folder: " + ec.message());

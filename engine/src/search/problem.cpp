@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <thread>
 
@@ -271,22 +272,30 @@ nlohmann::json fitnessJson(const FitnessTerms& t) {
 }
 
 Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j) {
-  try {
-    FitnessTerms t;
-    double* terms[kFitnessTermCount] = {&t.fall,      &t.tracking, &t.speed, &t.heading,
-                                        &t.placement, &t.upright,  &t.energy};
-    for (int k = 0; k < kFitnessTermCount; ++k) *terms[k] = j.at(fitnessTermName(k)).get<double>();
-    t.total = j.at("total").get<double>();
-    t.survived_s = j.at("survived_s").get<double>();
-    t.distance_m = j.at("distance_m").get<double>();
-    t.speed_m_s = j.at("speed_m_s").get<double>();
-    t.track_err_rad_rms = j.at("track_err_rad_rms").get<double>();
-    t.fell = j.at("fell").get<bool>();
-    if (j.contains("fall_reason")) t.fall_reason = j.at("fall_reason").get<std::string>();
-    return t;
-  } catch (const nlohmann::json::exception& e) {
-    return Status::error(e.what());
+  FitnessTerms t;
+  double* terms[kFitnessTermCount] = {&t.fall,      &t.tracking, &t.speed, &t.heading,
+                                      &t.placement, &t.upright,  &t.energy};
+  const auto number = [&j](const char* key, double& out) -> Status {
+    if (!j.is_object() || !j.contains(key) || !j.at(key).is_number() ||
+        !std::isfinite(j.at(key).get<double>()))
+      return Status::error(std::string(key) + ": expected a finite number");
+    out = j.at(key).get<double>();
+    return {};
+  };
+  for (int k = 0; k < kFitnessTermCount; ++k)
+    if (Status s = number(fitnessTermName(k), *terms[k]); !s.ok()) return s;
+  const char* keys[5] = {"total", "survived_s", "distance_m", "speed_m_s", "track_err_rad_rms"};
+  double* values[5] = {&t.total, &t.survived_s, &t.distance_m, &t.speed_m_s, &t.track_err_rad_rms};
+  for (int k = 0; k < 5; ++k)
+    if (Status s = number(keys[k], *values[k]); !s.ok()) return s;
+  if (!j.contains("fell") || !j.at("fell").is_boolean())
+    return Status::error("fell: expected true or false");
+  t.fell = j.at("fell").get<bool>();
+  if (j.contains("fall_reason")) {
+    if (!j.at("fall_reason").is_string()) return Status::error("fall_reason: expected text");
+    t.fall_reason = j.at("fall_reason").get<std::string>();
   }
+  return t;
 }
 
 Result<Problem> Problem::create(const physics::BodyPlan& plan, const motion::Skeleton& skeleton,
@@ -356,12 +365,17 @@ Evaluation evaluate(const Problem& problem, std::span<const double> x,
   Result<physics::SimulationReport> run =
       physics::simulate(problem.plan, problem.skeleton, target, settings);
   if (!run.ok()) {
-    e.terms.total = std::numeric_limits<double>::quiet_NaN();
+    e.terms.diverged = true;
+    e.terms.total = std::numeric_limits<double>::infinity();
     return e;
   }
   e.report = std::move(run).value();
   e.cancelled = e.report.cancelled;
   e.terms = scoreRun(problem, e.report);
+  if (e.report.diverged) {
+    e.terms.diverged = true;
+    e.terms.total = std::numeric_limits<double>::infinity();
+  }
   if (!record) e.report.motion = {};
   return e;
 }

@@ -42,7 +42,8 @@ nlohmann::json Random::saveState() const {
   std::ostringstream text;
   text.imbue(std::locale::classic());
   text << engine_;
-  nlohmann::json state = {{"engine", text.str()}, {"cached_normal", nullptr}};
+  // cached_normal only when there is one: no null where a number belongs.
+  nlohmann::json state = {{"engine", text.str()}};
   if (has_cached_) state["cached_normal"] = cached_;
   return state;
 }
@@ -58,9 +59,8 @@ Result<Random> Random::load(const nlohmann::json& state, const std::string& wher
     return Status::error(where +
                          ": engine: expected the text of a std::mt19937_64 (312 numbers "
                          "and a position)");
-  Result<const nlohmann::json*> cached = state_json::field(state, "cached_normal", where);
-  if (!cached.ok()) return cached.status();
-  if (!cached.value()->is_null()) {
+  // Absent (or null, as checkpoints before this version wrote it): no cached half.
+  if (state.contains("cached_normal") && !state.at("cached_normal").is_null()) {
     if (Status s = state_json::readNumber(state, "cached_normal", where, random.cached_); !s.ok())
       return Status::error(where + ": cached_normal: expected a finite number or null");
     random.has_cached_ = true;

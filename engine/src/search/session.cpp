@@ -30,8 +30,14 @@ double now() {
 nlohmann::json statsJson(const TermStats& s) {
   return {s.best, s.mean, s.worst};
 }
-TermStats statsFromJson(const nlohmann::json& j) {
-  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+// Three finite numbers (checkpoints before divergence was detected could hold null for inf).
+Result<TermStats> statsFromJson(const nlohmann::json& j, const std::string& where) {
+  const auto finiteAt = [&j](size_t i) {
+    return j[i].is_number() && std::isfinite(j[i].get<double>());
+  };
+  if (!j.is_array() || j.size() != 3 || !finiteAt(0) || !finiteAt(1) || !finiteAt(2))
+    return Status::error(where + ": expected [best, mean, worst], three finite numbers");
+  return TermStats{j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
 }
 
 nlohmann::json weightsJson(const FitnessWeights& w) {
@@ -58,12 +64,13 @@ int hardwareThreads() {
 Status EvolveSettings::validate() const {
   if (optimizer != "cmaes" && optimizer != "ga")
     return Status::error("optimizer must be cmaes or ga, not '" + optimizer + "'");
-  if (population < 0) return Status::error("population must be >= 0");
+  if (population < 0 || population > kMaxPopulation)
+    return Status::error("population must be 0 (the optimiser's default) to 100000");
   if (generations < 0) return Status::error("generations must be >= 0");
   if (!(std::isfinite(minutes) && minutes >= 0.0)) return Status::error("minutes must be >= 0");
   if (generations == 0 && minutes == 0.0)
     return Status::error("generations and minutes are both 0: give the search a budget");
-  if (threads < 0) return Status::error("threads must be >= 0");
+  if (threads < 0 || threads > 1024) return Status::error("threads must be 0 (every core) to 1024");
   if (nice < 0 || nice > 19) return Status::error("nice must be 0..19");
   if (!(std::isfinite(initial_sigma) && initial_sigma > 0.0 && initial_sigma <= 1.0))
     return Status::error("initial_sigma must be in (0, 1]");
@@ -141,14 +148,25 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
     if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());
     session->optimizer_ = std::move(optimizer).value();
-    for (const nlohmann::json& h : checkpoint.at("history")) {
+    const nlohmann::json& history = checkpoint.at("history");
+    for (size_t i = 0; i < history.size(); ++i) {
+      const nlohmann::json& h = history.at(i);
+      const std::string where = "checkpoint: history[" + std::to_string(i) + "].";
       GenerationRecord r;
       r.generation = h.at("generation").get<int>();
       r.evaluations = h.at("evaluations").get<long long>();
       r.wall_s = h.at("wall_s").get<double>();
-      r.total = statsFromJson(h.at("total"));
-      for (int k = 0; k < kFitnessTermCount; ++k)
-        r.terms[static_cast<size_t>(k)] = statsFromJson(h.at(fitnessTermName(k)));
+      Result<TermStats> total = statsFromJson(h.at("total"), where + "total");
+      if (!total.ok()) return total.status();
+      r.total = total.value();
+      for (int k = 0; k < kFitnessTermCount; ++k) {
+        Result<TermStats> term =
+            statsFromJson(h.at(fitnessTermName(k)), where + fitnessTermName(k));
+        if (!term.ok()) return term.status();
+        r.terms[static_cast<size_t>(k)] = term.value();
+      }
+      r.scored = h.value("scored", 1);  // older checkpoints: generations were scored
+      r.diverged = h.value("diverged", 0);
       r.best_survived_s = h.at("best_survived_s").get<double>();
       r.best_distance_m = h.at("best_distance_m").get<double>();
       session->history_.push_back(r);
@@ -176,7 +194,9 @@ nlohmann::json Session::checkpoint() const {
                         {"wall_s", r.wall_s},
                         {"total", statsJson(r.total)},
                         {"best_survived_s", r.best_survived_s},
-                        {"best_distance_m", r.best_distance_m}};
+                        {"best_distance_m", r.best_distance_m},
+                        {"scored", r.scored},
+                        {"diverged", r.diverged}};
     for (int k = 0; k < kFitnessTermCount; ++k)
       h[fitnessTermName(k)] = statsJson(r.terms[static_cast<size_t>(k)]);
     history.push_back(h);
@@ -197,7 +217,7 @@ nlohmann::json Session::checkpoint() const {
           {"optimizer", optimizer_->saveState()},
           {"history", history},
           {"best_point", best_point_},
-          {"best_terms", best_point_.empty() ? nlohmann::json(nullptr) : fitnessJson(best_terms_)},
+          {"best_terms", best_point_.empty() ? nlohmann::json::object() : fitnessJson(best_terms_)},
           {"wall_s", history_.empty() ? wall_offset_s_ : history_.back().wall_s}};
 }
 
@@ -212,7 +232,25 @@ bool Session::finished() const {
   const bool generations_spent = settings_.generations > 0 && done >= settings_.generations;
   const double wall = history_.empty() ? wall_offset_s_ : history_.back().wall_s;
   const bool time_spent = settings_.minutes > 0.0 && wall >= settings_.minutes * 60.0;
-  return generations_spent || time_spent || optimizer_->converged();
+  return generations_spent || time_spent || optimizer_->converged() || nothingFinite();
+}
+
+bool Session::nothingFinite() const {
+  if (history_.size() < static_cast<size_t>(kGenerationsWithoutScore) || !best_point_.empty())
+    return false;
+  for (const GenerationRecord& r : history_)
+    if (r.scored > 0) return false;
+  return true;
+}
+
+std::string Session::failureLocked() const {
+  if (!nothingFinite()) return {};
+  const GenerationRecord& last = history_.back();
+  return "every evaluation of the first " + std::to_string(history_.size()) +
+         " generations failed (" + std::to_string(last.diverged) + " of " +
+         std::to_string(last.diverged + last.scored) +
+         " in the last diverged): nothing finite to keep; check the balance gains, pushes, "
+         "masses and the clip's frame time";
 }
 
 bool Session::runGeneration() {
@@ -241,6 +279,7 @@ bool Session::runGeneration() {
   size_t best = 0, finite = 0;
   for (size_t i = 0; i < results.size(); ++i) {
     const FitnessTerms& t = results[i].terms;
+    if (t.diverged) ++record.diverged;
     if (!std::isfinite(t.total)) continue;
     ++finite;
     if (!std::isfinite(costs[best]) || t.total < costs[best]) best = i;
@@ -253,9 +292,13 @@ bool Session::runGeneration() {
     for (int k = 0; k < kFitnessTermCount; ++k)
       add(record.terms[static_cast<size_t>(k)], fitnessTerm(t, k));
   }
+  record.scored = static_cast<int>(finite);
   if (finite > 0) {
     record.total.mean /= static_cast<double>(finite);
     for (TermStats& s : record.terms) s.mean /= static_cast<double>(finite);
+  } else {  // nothing scored: no statistics, and no inf for a file to carry
+    record.total = {};
+    for (TermStats& s : record.terms) s = {};
   }
   record.best_survived_s = results[best].terms.survived_s;
   record.best_distance_m = results[best].terms.distance_m;
@@ -288,6 +331,7 @@ bool Session::runGeneration() {
         snap->population_motions.push_back(std::move(e.report.motion));
     }
     snap->state = running_ ? "running" : "ready";
+    snap->failure = failureLocked();
     snapshot_ = std::move(snap);
   }
   return true;
@@ -304,6 +348,7 @@ void Session::publish(const std::string& state) {
     snap->best_terms = best_terms_;
   }
   snap->state = state;
+  snap->failure = failureLocked();
   snapshot_ = std::move(snap);
 }
 

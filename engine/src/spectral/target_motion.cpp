@@ -6,6 +6,8 @@
 #include <set>
 #include <tuple>
 
+#include "sinew/spectral/limits.h"
+
 namespace sinew::spectral {
 namespace {
 
@@ -31,8 +33,8 @@ int highestHarmonic(const ChannelModel& channel) {
 
 Status TargetMotion::validate(const motion::Skeleton& skeleton) const {
   const int joints = skeleton.jointCount();
-  if (!(omega0 > 0.0) || !std::isfinite(omega0)) {
-    return Status::error("target '" + name + "': omega0 must be a positive number (rad/s)");
+  if (!(omega0 > 0.0 && omega0 <= kMaxOmega_rad_s)) {
+    return Status::error("target '" + name + "': omega0 must be in (0, 10000] rad/s");
   }
   if (jointCount() != joints || static_cast<int>(base_translations.size()) != joints ||
       (!base_scales.empty() && static_cast<int>(base_scales.size()) != joints)) {
@@ -48,29 +50,38 @@ Status TargetMotion::validate(const motion::Skeleton& skeleton) const {
     if (!seen.insert({channel.joint, static_cast<int>(channel.kind), channel.axis}).second) {
       return Status::error(label + ": appears twice");
     }
-    if (!std::isfinite(channel.mean) || !std::isfinite(channel.trend)) {
-      return Status::error(label + ": mean or trend is not finite");
+    if (!(std::abs(channel.mean) <= kMaxCoefficient) ||
+        !(std::abs(channel.trend) <= kMaxCoefficient)) {
+      return Status::error(label + ": mean or trend is not a number within 1e6");
+    }
+    if (channel.terms.size() > static_cast<size_t>(kMaxHarmonicsPerChannel)) {
+      return Status::error(label + ": more than 1024 harmonics");
     }
     for (const Harmonic& h : channel.terms) {
-      if (h.n < 1 || !std::isfinite(h.amplitude) || h.amplitude < 0.0 || !std::isfinite(h.phase)) {
-        return Status::error(label + ": harmonic " + std::to_string(h.n) +
-                             " needs n >= 1, a finite amplitude >= 0 and a finite phase");
+      if (h.n < 1 || h.n > kMaxHarmonicIndex || !(h.amplitude >= 0.0) ||
+          !(h.amplitude <= kMaxCoefficient) || !(std::abs(h.phase) <= kMaxCoefficient)) {
+        return Status::error(
+            label + ": harmonic " + std::to_string(h.n) +
+            " needs n in 1..1024, an amplitude in [0, 1e6] and a phase within 1e6");
       }
     }
   }
   for (size_t n = 0; n < secondary.size(); ++n) {
     const SecondaryTerm& term = secondary[n];
     if (term.joint < 0 || term.joint >= joints || term.axis < 0 || term.axis > 2 ||
-        !(term.omega > 0.0) || !std::isfinite(term.omega) || !(term.amplitude >= 0.0) ||
-        !std::isfinite(term.amplitude) || !std::isfinite(term.phase)) {
+        !(term.omega > 0.0 && term.omega <= kMaxOmega_rad_s) || !(term.amplitude >= 0.0) ||
+        !(term.amplitude <= kMaxCoefficient) || !(std::abs(term.phase) <= kMaxCoefficient)) {
       return Status::error("target '" + name + "', secondary term " + std::to_string(n) +
                            ": needs a joint and axis in range, omega > 0, amplitude >= 0");
     }
   }
   for (int j = 0; j < joints; ++j) {
-    if (!finite(base_translations[j]) || !(std::abs(glm::length(base_rotations[j]) - 1.0) < 1e-6)) {
+    const glm::dvec3& t = base_translations[j];
+    if (!finite(t) || !(std::abs(glm::length(base_rotations[j]) - 1.0) < 1e-6) ||
+        !(std::abs(t.x) <= kMaxCoefficient && std::abs(t.y) <= kMaxCoefficient &&
+          std::abs(t.z) <= kMaxCoefficient)) {
       return Status::error("target '" + name + "': base pose of joint '" + skeleton.names[j] +
-                           "' is not finite");
+                           "' is not finite or beyond 1e6 m");
     }
   }
   return {};

@@ -14,6 +14,10 @@ namespace sinew::motion {
 // (translation, rotation, scale; LINEAR, STEP, CUBICSPLINE), resampled to options.fps or to each
 // animation's median key spacing. A file without skins uses the whole node tree.
 Result<MotionAsset> loadGltf(const std::filesystem::path& path, const ImportOptions& options = {});
+// The same from a file's bytes already in memory; `path` names it in messages and is where a
+// .gltf's external buffers are looked for.
+Result<MotionAsset> readGltf(std::string bytes, const std::filesystem::path& path,
+                             const ImportOptions& options = {});
 
 // Writes `clip` as a .glb or .gltf (by extension). When asset.gltf is set the original document
 // is kept (meshes, skins, materials, textures) and its animations are replaced by `clip`;

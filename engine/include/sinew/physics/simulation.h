@@ -20,9 +20,11 @@
 
 namespace sinew::physics {
 
+inline constexpr double kMaxPushImpulse_ns = 1e4;  // |impulse| of one push, N s
+
 struct Push {
   double time_s = 1.0;           // when, seconds from the start, >= 0
-  glm::dvec3 impulse_ns{0.0};    // world, N s
+  glm::dvec3 impulse_ns{0.0};    // world, N s, |impulse| <= kMaxPushImpulse_ns
   std::string link;              // the link (its skeleton joint's name); empty: the base
 };
 
@@ -58,6 +60,9 @@ struct Footfall {
 struct SimulationReport {
   bool fell = false;
   bool cancelled = false;     // ended early by SimulationSettings::cancel: the figures are partial
+  bool diverged = false;      // physics/divergence.h: also counts as fallen; every figure comes
+                              // from the states before it
+  std::string diverged_reason;  // "a joint at 100 rad/s, Bullet's velocity clamp", or empty
   double fall_time_s = -1.0;  // -1: did not fall
   std::string fall_reason;    // e.g. "LeftHand touched the ground", "centre of mass at 0.41 m"
   double seconds = 0.0;       // simulated (less than asked when it stopped at a fall)

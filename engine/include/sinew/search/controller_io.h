@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "sinew/core/status.h"
 #include "sinew/motion/asset.h"
@@ -16,6 +18,10 @@
 #include "sinew/spectral/target_motion.h"
 
 namespace sinew::search {
+
+// Balance gains a controller file may hold: cd and cv within +-this (rad/m, rad/(m/s)); torso
+// is a share in [0, 1]. Searches explore +-GenomeSettings::gain_range (default 1).
+inline constexpr double kMaxBalanceGain = 100.0;
 
 struct ControllerFile {
   spectral::TargetMotion target;
@@ -28,12 +34,16 @@ struct ControllerFile {
   FitnessTerms fitness;
   std::string rig;
   std::string clip;
+  std::vector<std::string> warnings;  // read, not written: unknown keys, with the file and field
 };
 // Saved atomically (a failed save keeps the old file); loading names the file and the field.
 Status saveController(const std::filesystem::path& path, const ControllerFile& controller,
                       const motion::Skeleton& skeleton);
 Result<ControllerFile> loadController(const std::filesystem::path& path,
                                       const motion::Skeleton& skeleton);
+// The same from text in memory; `name` is the file in messages.
+Result<ControllerFile> controllerFromJson(std::string_view text, const motion::Skeleton& skeleton,
+                                          const std::string& name);
 
 
 // The best of a search, written into `dir` (created if needed): best.json (the controller, with

@@ -110,6 +110,8 @@ struct FitnessTerms {
   double track_err_rad_rms = 0.0;
   bool fell = false;
   std::string fall_reason;  // when it fell: what touched the ground or dropped (for the user)
+  bool diverged = false;  // the simulation diverged (or could not run): total is +inf, a
+                          // failure the optimisers rank last; never written as a number
 };
 inline constexpr int kFitnessTermCount = 7;
 const char* fitnessTermName(int term);            // "fall", "tracking", ...

@@ -32,16 +32,19 @@
 
 namespace sinew::search {
 
+inline constexpr int kMaxPopulation = 100000;
+
 struct EvolveSettings {
   std::string optimizer = "cmaes";  // "cmaes" or "ga"
-  int population = 0;               // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32)
+  int population = 0;               // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32),
+                                    // at most kMaxPopulation
   int generations = 40;             // budget in generations, >= 0 (0: only the time budget)
   double minutes = 0.0;             // wall-clock budget, minutes, >= 0 (0: none)
   int threads = 0;                  // evaluation workers, >= 0 (0: every core)
   std::uint64_t seed = 1;
-  double initial_sigma = 0.02;      // CMA-ES step size (GA: mutation scale), normalised units,
-                                    // (0, 1]: small, the prior walks already
-  bool record_population = false;   // keep every individual's recorded motion in the snapshots
+  double initial_sigma = 0.02;     // CMA-ES step size (GA: mutation scale), normalised units,
+                                   // (0, 1]: small, the prior walks already
+  bool record_population = false;  // keep every individual's recorded motion in the snapshots
   int nice = 0;  // 0..19: the search threads' niceness (Linux). The editor uses 10 so that its UI
                  // thread gets the cores first while the search still takes whatever is left.
 
@@ -49,18 +52,24 @@ struct EvolveSettings {
 };
 
 struct TermStats {
-  double best = 0.0, mean = 0.0, worst = 0.0;  // over the generation's finished evaluations
+  double best = 0.0, mean = 0.0, worst = 0.0;  // over the generation's scored evaluations; all 0
+                                               // when none was (GenerationRecord::scored == 0)
 };
 
 struct GenerationRecord {
-  int generation = 0;        // 1 for the first finished generation
+  int generation = 0;         // 1 for the first finished generation
   long long evaluations = 0;  // so far
   double wall_s = 0.0;        // since the session (or its first part, when resumed) started
   TermStats total;
   std::array<TermStats, kFitnessTermCount> terms{};
   double best_survived_s = 0.0;  // of the generation's best
   double best_distance_m = 0.0;
+  int scored = 0;    // evaluations with a finite cost
+  int diverged = 0;  // evaluations whose simulation diverged or could not run (cost +inf)
 };
+
+// A search that found nothing finite in this many generations stops (Snapshot::failure).
+inline constexpr int kGenerationsWithoutScore = 3;
 
 struct Snapshot {
   int generation = 0;
@@ -71,7 +80,9 @@ struct Snapshot {
   std::vector<std::vector<double>> population;  // the last finished generation's points
   std::vector<FitnessTerms> population_terms;
   std::vector<motion::Clip> population_motions;  // when record_population
-  std::string state;  // "ready", "running", "paused", "stopped", "finished"
+  std::string state;    // "ready", "running", "paused", "stopped", "finished"
+  std::string failure;  // why the search stopped without a result (every evaluation of its first
+                        // kGenerationsWithoutScore generations diverged), or empty
 };
 
 class Session {
@@ -83,11 +94,11 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  void start();   // runs on a background thread until the budget, stop() or convergence
-  void pause();   // returns once the worker is idle
+  void start();  // runs on a background thread until the budget, stop() or convergence
+  void pause();  // returns once the worker is idle
   void resume();
-  void stop();    // returns once the worker has ended
-  void wait();    // until the worker ends by itself or is stopped
+  void stop();  // returns once the worker has ended
+  void wait();  // until the worker ends by itself or is stopped
   // One generation on the calling thread (not while started); false when the budget is spent
   // or the run was cancelled.
   bool runGeneration();
@@ -99,13 +110,16 @@ class Session {
   nlohmann::json checkpoint() const;
   const Problem& problem() const { return problem_; }
   const EvolveSettings& settings() const { return settings_; }
-  bool finished() const;  // budget spent or converged
+  bool finished() const;   // budget spent, converged, or nothing finite found (Snapshot::failure)
   int population() const;  // individuals in the current generation
 
  private:
   Session(Problem problem, const EvolveSettings& settings);
   void workerLoop();
   void publish(const std::string& state);
+  // With mutex_ held: whether kGenerationsWithoutScore generations scored nothing, and why.
+  bool nothingFinite() const;
+  std::string failureLocked() const;
 
   Problem problem_;
   EvolveSettings settings_;

@@ -1,0 +1,155 @@
+// Bad input on the command line and in the files it reads (issue 14), run as a user runs it:
+// exit 1 and one line on stderr, or the right result; never an abort, a hang, null or nan.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.h"
+
+namespace sinew {
+namespace {
+
+std::filesystem::path walkPath() {
+  return test::sourceDir() / "assets" / "biped_walk.bvh";
+}
+std::string walk() {
+  return test::quote(walkPath());
+}
+
+// The bundled walk with its Spine1 renamed to "Hüfte" in Latin-1 (one byte for ü), as European
+// capture software writes it, saved under a Latin-1 file name too.
+std::filesystem::path latin1Walk(const test::TempDir& dir) {
+  std::string text = test::readText(walkPath());
+  text.replace(text.find("JOINT Spine1"), 12,
+               "JOINT H\xFC"
+               "fte");
+  const std::filesystem::path path = dir / "walk_\xE9.bvh";
+  test::writeText(path, text);
+  return path;
+}
+
+bool oneLine(const std::string& err) {
+  return !err.empty() && err.find('\n') == err.size() - 1 && err.rfind("sinew: ", 0) == 0;
+}
+
+TEST(CliBadInput, Latin1NamesAndPathsGiveValidUtf8Json) {
+  test::TempDir dir;
+  const std::string file = test::quote(latin1Walk(dir));
+  const test::CommandResult info = test::runSinew("info --json " + file);
+  ASSERT_EQ(info.exit_code, 0) << info.err;  // was 134 (an uncaught JSON exception)
+  const nlohmann::json json = nlohmann::json::parse(info.out);
+  EXPECT_EQ(json["joints"][2]["name"],
+            "H\xC3\xBC"
+            "fte");
+  EXPECT_NE(json["file"].get<std::string>().find("walk_\xC3\xA9.bvh"), std::string::npos);
+
+  const test::CommandResult analyze =
+      test::runSinew("analyze " + file + " --json " + test::quote(dir / "a.json"));
+  ASSERT_EQ(analyze.exit_code, 0) << analyze.err;
+  const std::string written = test::readText(dir / "a.json");
+  EXPECT_FALSE(nlohmann::json::parse(written, nullptr, false).is_discarded());
+  EXPECT_EQ(written.find("null"), std::string::npos);
+
+  const test::CommandResult simulate = test::runSinew(
+      "simulate --rig " + file + " --seconds 1 --json " + test::quote(dir / "s.json"));
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.err;
+  const std::string report = test::readText(dir / "s.json");
+  EXPECT_EQ(report.find("null"), std::string::npos) << report;
+  EXPECT_EQ(nlohmann::json::parse(report)["diverged"], false);
+}
+
+TEST(CliBadInput, EvolveOnALatin1RigWritesItsResults) {
+  test::TempDir dir;
+  const test::CommandResult evolve = test::runSinew(
+      "evolve --rig " + test::quote(latin1Walk(dir)) +
+      " --generations 2 --population 4 --window 1 --threads 1 --out " + test::quote(dir / "out"));
+  ASSERT_EQ(evolve.exit_code, 0) << evolve.out << evolve.err;  // was an abort after generation 1
+  for (const char* name : {"best.json", "best.bvh", "best.glb", "checkpoint.json", "history.csv"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / name)) << name;
+  const std::string best = test::readText(dir / "out" / "best.json");
+  EXPECT_NE(best.find("H\xC3\xBC"
+                      "fte"),
+            std::string::npos);
+  const std::string history = test::readText(dir / "out" / "history.csv");
+  EXPECT_EQ(history.find("inf"), std::string::npos);
+  EXPECT_EQ(history.find("nan"), std::string::npos);
+}
+
+TEST(CliBadInput, ByteOrderMarkIsAccepted) {
+  test::TempDir dir;
+  test::writeText(dir / "bom.bvh", "\xEF\xBB\xBF" + test::readText(walkPath()));
+  const test::CommandResult info = test::runSinew("info " + test::quote(dir / "bom.bvh"));
+  EXPECT_EQ(info.exit_code, 0) << info.err;  // was "found '???HIERARCHY'"
+}
+
+TEST(CliBadInput, OptionsOutOfRangeExitOneWithOneLine) {
+  struct Case {
+    std::string arguments;
+    std::string expected;  // part of the one line
+  };
+  const std::string out = " --out " + test::quote(std::filesystem::temp_directory_path() / "x");
+  const Case cases[] = {
+      {"analyze " + walk() + " --harmonics auto --tolerance-cm 0",
+       "--tolerance-cm: expected centimetres in (0, 1000], got 0"},
+      {"evolve --rig " + walk() + " --generations 0" + out,
+       "--generations 0 with no --minutes gives the search no budget"},
+      {"evolve --rig " + walk() + " --population 4.5" + out, "--population"},
+      {"evolve --rig " + walk() + " --seed -1" + out, "--seed"},
+      {"simulate --balance 1e308,0,0,0,0.5", "--balance: value 1 is beyond the limit of +-100"},
+      {"simulate --push 1,1e6,0,0", "impulse at most 10000 N s"},
+      {"info " + walk() + " --fps 0.001", "--fps"},
+  };
+  for (const Case& c : cases) {
+    const test::CommandResult r = test::runSinew(c.arguments);
+    EXPECT_EQ(r.exit_code, 1) << c.arguments << "\n" << r.err;
+    EXPECT_TRUE(oneLine(r.err)) << c.arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.arguments << "\n" << r.err;
+    EXPECT_EQ(r.err.find("179769"), std::string::npos) << r.err;  // no 309-digit range
+  }
+}
+
+TEST(CliBadInput, ConvertReportsTheFramesItWrote) {
+  test::TempDir dir;
+  const test::CommandResult r =
+      test::runSinew("convert " + walk() + " " + test::quote(dir / "fast.bvh") + " --fps 60");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("257 frames at 60 fps"), std::string::npos) << r.out;  // not 129 at 30
+}
+
+TEST(CliBadInput, AControllerWithoutTargetIsNamed) {
+  test::TempDir dir;
+  test::writeText(dir / "c.json", R"({"format": "sinew.controller", "version": 1,
+    "balance": {"cd_sagittal": 0, "cv_sagittal": 0, "cd_coronal": 0, "cv_coronal": 0, "torso": 0.5},
+    "settings": {"window_s": 10, "terrain": "flat", "seed": 1, "optimizer": "cmaes", "no_prior": false}})");
+  const test::CommandResult r =
+      test::runSinew("simulate --seconds 1 --controller " + test::quote(dir / "c.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sinew: " + (dir / "c.json").string() +
+                       ": target: missing (the controller's coefficients; a best.json from sinew "
+                       "evolve has them)\n");
+}
+
+TEST(CliBadInput, AClipForARigMustShareItsHierarchy) {
+  test::TempDir dir;
+  // The same joint names in the same order, with Head moved from the Neck to the Chest.
+  std::string text = test::readText(walkPath());
+  const std::string head = "\t\t\t\t\tJOINT Head";
+  const std::string close = "\t\t\t\t\t}\n\t\t\t\t}\n\t\t\t\tJOINT LeftShoulder";
+  ASSERT_NE(text.find(head), std::string::npos);
+  ASSERT_NE(text.find(close), std::string::npos);
+  text.replace(text.find(close), close.size(), "\t\t\t\t\t}\n\t\t\t\tJOINT LeftShoulder");
+  text.replace(text.find(head), head.size(), "\t\t\t\t}\n\t\t\t\tJOINT Head");
+  test::writeText(dir / "other.bvh", text);
+  const test::CommandResult info = test::runSinew("info " + test::quote(dir / "other.bvh"));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const test::CommandResult r = test::runSinew("simulate --seconds 0.5 --rig " + walk() +
+                                               " --clip " + test::quote(dir / "other.bvh"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "sinew: " + (dir / "other.bvh").string() + ": its skeleton is not the rig's (" +
+                       walkPath().string() + "): the same joint names in another hierarchy\n");
+}
+
+}  // namespace
+}  // namespace sinew

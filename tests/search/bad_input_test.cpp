@@ -1,0 +1,141 @@
+// Bad input to the search and its files (issue 14): controllers without a target, with unknown
+// keys or absurd gains; diverged simulations scored as failures and never written as numbers; a
+// search that finds nothing finite stops with a message; old checkpoints with null.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "physics/physics_test_util.h"
+#include "sinew/core/file_io.h"
+#include "sinew/physics/divergence.h"
+#include "sinew/search/controller_io.h"
+#include "sinew/search/session.h"
+
+namespace sinew::search {
+namespace {
+
+physics::test_util::Character biped() {
+  return physics::test_util::loadCharacter("biped_walk.bvh");
+}
+
+// best.json for the walk, then edited by `edit`, loaded back.
+Result<ControllerFile> editedController(const physics::test_util::Character& c,
+                                        void (*edit)(nlohmann::json&), const test::TempDir& dir) {
+  ControllerFile file;
+  file.target = c.target;
+  EXPECT_TRUE(saveController(dir / "best.json", file, c.asset.skeleton).ok());
+  nlohmann::json json = nlohmann::json::parse(test::readText(dir / "best.json"));
+  edit(json);
+  test::writeText(dir / "edited.json", json.dump(2));
+  return loadController(dir / "edited.json", c.asset.skeleton);
+}
+
+TEST(SearchBadInput, ControllerFilesGiveOneLineNamingTheField) {
+  const physics::test_util::Character c = biped();
+  test::TempDir dir;
+  const std::string file = (dir / "edited.json").string();
+  Result<ControllerFile> same = editedController(
+      c, [](nlohmann::json&) {}, dir);
+  ASSERT_TRUE(same.ok()) << same.message();
+  EXPECT_TRUE(same.value().warnings.empty());
+  Result<ControllerFile> no_target = editedController(
+      c, [](nlohmann::json& j) { j.erase("target"); }, dir);
+  EXPECT_EQ(no_target.message(), file +
+                                     ": target: missing (the controller's coefficients; a "
+                                     "best.json from sinew evolve has them)");
+  Result<ControllerFile> gains = editedController(
+      c, [](nlohmann::json& j) { j["balance"]["cv_coronal"] = 1e308; }, dir);
+  EXPECT_EQ(gains.message(), file + ": balance: cv_coronal: beyond the limit of +-100");
+  Result<ControllerFile> seed = editedController(
+      c, [](nlohmann::json& j) { j["settings"]["seed"] = -1; }, dir);
+  EXPECT_EQ(seed.message(), file + ": settings: seed: expected an unsigned 64-bit integer");
+  Result<ControllerFile> n = editedController(
+      c, [](nlohmann::json& j) { j["target"]["channels"][0]["harmonics"][0]["n"] = 1e9; }, dir);
+  EXPECT_EQ(n.message(), file +
+                             ": target: channels[0].harmonics[0].n: expected a whole number "
+                             "from 1 to 1024");
+  test::writeText(dir / "edited.json", "{\"format\": \"sinew.controller\", \"version\": 1,");
+  EXPECT_EQ(loadController(dir / "edited.json", c.asset.skeleton).message(),
+            file + ": not valid JSON (a sinew.controller object)");
+}
+
+TEST(SearchBadInput, UnknownControllerKeysAreWarnings) {
+  const physics::test_util::Character c = biped();
+  test::TempDir dir;
+  Result<ControllerFile> r = editedController(
+      c,
+      [](nlohmann::json& j) {
+        j["balanse"] = 1;
+        j["settings"]["windw_s"] = 4;
+      },
+      dir);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const std::string file = (dir / "edited.json").string();
+  ASSERT_EQ(r.value().warnings.size(), 2u);
+  EXPECT_EQ(r.value().warnings[0], file + ": unknown key 'balanse' (ignored)");
+  EXPECT_EQ(r.value().warnings[1], file + ": settings: unknown key 'windw_s' (ignored)");
+}
+
+// A problem whose every evaluation fails: the push names no link, found only when simulating.
+Problem failingProblem(const physics::test_util::Character& c) {
+  physics::SimulationSettings simulation;
+  simulation.seconds = 0.5;
+  simulation.pushes.push_back({0.1, glm::dvec3(1.0, 0.0, 0.0), "NoSuchLink"});
+  Result<Problem> p = Problem::create(c.plan, c.asset.skeleton, c.target, {}, simulation);
+  EXPECT_TRUE(p.ok()) << p.message();
+  return std::move(p).value();
+}
+
+TEST(SearchBadInput, ASearchFindingNothingFiniteStopsWithAMessageAndWritesNoInfOrNull) {
+  const physics::test_util::Character c = biped();
+  EvolveSettings settings;
+  settings.population = 4;
+  settings.generations = 40;
+  settings.threads = 1;
+  std::unique_ptr<Session> session = Session::create(failingProblem(c), settings).value();
+  int generations = 0;
+  while (session->runGeneration()) ++generations;
+  EXPECT_EQ(generations, kGenerationsWithoutScore);  // not 40
+  const auto snap = session->snapshot();
+  EXPECT_TRUE(snap->best_point.empty());
+  EXPECT_NE(snap->failure.find("every evaluation of the first 3 generations failed (4 of 4 in "
+                               "the last diverged): nothing finite to keep"),
+            std::string::npos)
+      << snap->failure;
+  ASSERT_EQ(snap->history.size(), 3u);
+  EXPECT_EQ(snap->history[0].scored, 0);
+  EXPECT_EQ(snap->history[0].diverged, 4);
+  const std::string text = session->checkpoint().dump();
+  EXPECT_EQ(text.find("null"), std::string::npos) << text.substr(0, 400);
+  EXPECT_EQ(text.find("Infinity"), std::string::npos);
+  for (const GenerationRecord& r : snap->history) EXPECT_TRUE(std::isfinite(r.total.best));
+}
+
+TEST(SearchBadInput, ACheckpointWithNullInItsHistoryGivesAClearMessage) {
+  const physics::test_util::Character c = biped();
+  EvolveSettings settings;
+  settings.population = 4;
+  settings.generations = 1;
+  settings.threads = 1;
+  std::unique_ptr<Session> session = Session::create(failingProblem(c), settings).value();
+  ASSERT_TRUE(session->runGeneration());
+  nlohmann::json checkpoint = session->checkpoint();
+  checkpoint["history"][0]["total"] = {nullptr, 0.0, nullptr};  // what older versions wrote
+  Result<std::unique_ptr<Session>> resumed = Session::resume(failingProblem(c), checkpoint);
+  ASSERT_FALSE(resumed.ok());
+  EXPECT_EQ(resumed.message(),
+            "checkpoint: history[0].total: expected [best, mean, worst], three finite numbers");
+}
+
+TEST(SearchBadInput, EvolveSettingsRefuseAbsurdPopulations) {
+  EvolveSettings settings;
+  settings.population = 1000000000;
+  EXPECT_EQ(settings.validate().message(),
+            "population must be 0 (the optimiser's default) to 100000");
+}
+
+}  // namespace
+}  // namespace sinew::search
