@@ -13,8 +13,8 @@
 #include "sinew/core/file_io.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
-#include "sinew/spectral/analysis.h"
-#include "sinew/spectral/target_io.h"
+#include "sinew/pipeline/pipeline.h"
+#include "sinew/search/controller_io.h"
 
 namespace sinew::app {
 namespace {
@@ -47,52 +47,77 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
     footfalls.push_back({{"foot", r.feet[static_cast<size_t>(f.foot)]},
                          {"time_s", f.time_s},
                          {"position_m", {f.position.x, f.position.y, f.position.z}}});
-  return {{"rig", args.rig},
-          {"clip", args.clip.empty() ? args.rig : args.clip},
-          {"terrain", args.terrain},
-          {"feedback", !args.no_feedback},
-          {"seconds", r.seconds},
-          {"fell", r.fell},
-          {"fall_time_s", r.fell ? nlohmann::json(r.fall_time_s) : nlohmann::json(nullptr)},
-          {"fall_reason", r.fall_reason},
-          {"distance_m", r.distance_m},
-          {"speed_m_s", r.speed_m_s},
-          {"track_err_rad_rms", r.track_err_rad_rms},
-          {"energy_j", r.energy_j},
-          {"torque_sq_per_kg", r.torque_sq_per_kg},
-          {"min_uprightness", r.min_uprightness},
-          {"mass_kg", r.mass_kg},
-          {"pushed_impulse_ns", {r.pushed_impulse_ns.x, r.pushed_impulse_ns.y, r.pushed_impulse_ns.z}},
-          {"feet", feet},
-          {"footfalls", footfalls}};
+  return {
+      {"rig", args.rig},
+      {"clip", args.clip.empty() ? args.rig : args.clip},
+      {"terrain", args.terrain},
+      {"feedback", !args.no_feedback},
+      {"seconds", r.seconds},
+      {"fell", r.fell},
+      {"fall_time_s", r.fell ? nlohmann::json(r.fall_time_s) : nlohmann::json(nullptr)},
+      {"fall_reason", r.fall_reason},
+      {"distance_m", r.distance_m},
+      {"speed_m_s", r.speed_m_s},
+      {"track_err_rad_rms", r.track_err_rad_rms},
+      {"energy_j", r.energy_j},
+      {"torque_sq_per_kg", r.torque_sq_per_kg},
+      {"min_uprightness", r.min_uprightness},
+      {"mass_kg", r.mass_kg},
+      {"pushed_impulse_ns", {r.pushed_impulse_ns.x, r.pushed_impulse_ns.y, r.pushed_impulse_ns.z}},
+      {"feet", feet},
+      {"footfalls", footfalls}};
 }
 
 int runSimulate(const SimulateArgs& args) {
   if (!args.controller_path.empty() && !args.target_path.empty())
     return fail("--controller and --target both give the coefficients: choose one");
-  Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
-                                              args.harmonics, args.import, args.body);
+  // The flags as the pipeline's settings; the engine makes the target and the body from them.
+  pipeline::ProjectSettings chosen;
+  chosen.rig = args.rig;
+  chosen.clip = args.clip;
+  chosen.target = args.target_path;
+  chosen.animation = args.animation;
+  chosen.harmonics = args.harmonics;
+  chosen.physics.window_s = args.seconds;
+  Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
+  if (!terrain.ok()) return fail(terrain.message());
+  chosen.physics.terrain = terrain.value();
+  for (const std::string& text : args.pushes) {
+    Result<physics::Push> push = parsePush(text);
+    if (!push.ok()) return fail(push.message());
+    chosen.physics.pushes.push_back(push.value());
+  }
+  Result<BodyOverrides> body = args.body.overrides();
+  if (!body.ok()) return fail(body.message());
+  chosen.physics.body = std::move(body).value();
+  Result<LoadedRig> loaded = loadRig(chosen, args.import);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
   const motion::Skeleton& skeleton = rig.asset.skeleton;
-
-  Result<physics::SimulationSettings> simulation =
-      simulationSettings(args.seconds, args.terrain, args.pushes);
-  if (!simulation.ok()) return fail(simulation.message());
-  physics::SimulationSettings& settings = simulation.value();
+  Result<physics::BodyPlan> built =
+      pipeline::bodyPlan(skeleton, rig.clip(), chosen.physics.body, chosen.rig);
+  if (!built.ok()) return fail(built.message());
+  Result<pipeline::TrackedMotion> tracked = pipeline::trackedMotion(skeleton, rig.clip(), chosen);
+  if (!tracked.ok()) return fail(tracked.message());
+  spectral::TargetMotion target = std::move(tracked.value().target);
+  std::string what = std::move(tracked.value().what);
+  physics::SimulationSettings settings = pipeline::simulationSettings(chosen.physics);
   settings.tracking.feedback = !args.no_feedback;
   if (!args.controller_path.empty()) {
     // An evolved controller: its coefficients and its balance gains.
-    Result<search::ControllerFile> controller = search::loadController(args.controller_path, skeleton);
+    Result<search::ControllerFile> controller =
+        search::loadController(args.controller_path, skeleton);
     if (!controller.ok()) return fail(controller.message());
-    rig.target = controller.value().target;
-    rig.what = args.controller_path;
+    target = controller.value().target;
+    what = args.controller_path;
     settings.tracking.balance = controller.value().balance;
   }
   if (!args.balance.empty()) {
     if (args.balance.size() != 5)
-      return fail("--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO, got " +
-                  std::to_string(args.balance.size()));
+      return fail(
+          "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO, "
+          "got " +
+          std::to_string(args.balance.size()));
     physics::BalanceGains& b = settings.tracking.balance;
     b.cd_sagittal = args.balance[0];
     b.cv_sagittal = args.balance[1];
@@ -101,15 +126,14 @@ int runSimulate(const SimulateArgs& args) {
     b.torso = args.balance[4];
   }
   settings.start_moving = !args.from_standing;
-  const physics::BodyPlan& plan = rig.plan;
-  const spectral::TargetMotion& target = rig.target;
-  const std::string& what = rig.what;
+  const physics::BodyPlan& plan = built.value();
 
-  std::printf("%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
-              "%.1f s on %s terrain, balance feedback %s\n",
-              args.rig.c_str(), plan.links.size(), plan.dofCount(),
-              plan.total_mass_kg, what.c_str(), target.period(), args.seconds,
-              physics::terrainKindName(settings.world.terrain.kind), args.no_feedback ? "off" : "on");
+  std::printf(
+      "%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
+      "%.1f s on %s terrain, balance feedback %s\n",
+      args.rig.c_str(), plan.links.size(), plan.dofCount(), plan.total_mass_kg, what.c_str(),
+      target.period(), args.seconds, physics::terrainKindName(settings.world.terrain.kind),
+      args.no_feedback ? "off" : "on");
   Result<physics::SimulationReport> run = physics::simulate(plan, skeleton, target, settings);
   if (!run.ok()) return fail(run.message());
   const physics::SimulationReport& r = run.value();
@@ -117,10 +141,11 @@ int runSimulate(const SimulateArgs& args) {
     std::printf("fell at %.2f s: %s\n", r.fall_time_s, r.fall_reason.c_str());
   else
     std::printf("stayed up for %.2f s\n", r.seconds);
-  std::printf("travelled %.2f m (%.2f m/s); tracking error %.2f deg RMS; energy %.0f J; "
-              "torque^2 %.0f N^2 m^2 s/kg\n",
-              r.distance_m, r.speed_m_s, r.track_err_rad_rms * 57.29577951308232, r.energy_j,
-              r.torque_sq_per_kg);
+  std::printf(
+      "travelled %.2f m (%.2f m/s); tracking error %.2f deg RMS; energy %.0f J; "
+      "torque^2 %.0f N^2 m^2 s/kg\n",
+      r.distance_m, r.speed_m_s, r.track_err_rad_rms * 57.29577951308232, r.energy_j,
+      r.torque_sq_per_kg);
   for (size_t f = 0; f < r.feet.size(); ++f)
     std::printf("  %-16s on the ground %3.0f%% of the time\n", r.feet[f].c_str(),
                 100.0 * r.contact_share[f]);
@@ -145,9 +170,11 @@ int runSimulate(const SimulateArgs& args) {
 void addSimulateCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SimulateArgs>();
   CLI::App* command = app.add_subcommand(
-      "simulate", "Make the rig's physical character track a clip's harmonic model with joint "
-                  "torques; report falls, distance, tracking error and energy");
-  command->add_option("--rig", args->rig, "The rig (.bvh, .glb, .gltf); default: the bundled biped");
+      "simulate",
+      "Make the rig's physical character track a clip's harmonic model with joint "
+      "torques; report falls, distance, tracking error and energy");
+  command->add_option("--rig", args->rig,
+                      "The rig (.bvh, .glb, .gltf); default: the bundled biped");
   command->add_option("--clip", args->clip,
                       "The motion to track (same skeleton); default: the rig's own");
   command->add_option("--target", args->target_path,
@@ -165,9 +192,10 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
                       "joint's body (default the pelvis); repeatable");
   command->add_flag("--no-feedback", args->no_feedback,
                     "Pure Fourier control: no balance feedback");
-  command->add_option("--balance", args->balance,
-                      "Balance feedback gains CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
-                      "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1)")
+  command
+      ->add_option("--balance", args->balance,
+                   "Balance feedback gains CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
+                   "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1)")
       ->delimiter(',');
   command->add_flag("--from-standing", args->from_standing,
                     "Start standing at rest and blend into the motion over 1 s (default: start "

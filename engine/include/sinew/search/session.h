@@ -32,16 +32,35 @@
 
 namespace sinew::search {
 
+// Which optimiser a search runs. Its name ("cmaes", "ga") is what flags, projects and checkpoints
+// write.
+enum class OptimizerKind : std::uint8_t { kCmaes, kGa };
+const char* optimizerName(OptimizerKind kind);  // "cmaes", "ga"
+// The kind called `name`; the message lists the names.
+Result<OptimizerKind> optimizerFromName(const std::string& name);
+
+// Where a session is. Its name ("ready", "running", ...) is what logs print.
+enum class SessionState : std::uint8_t { kReady, kRunning, kPaused, kStopped, kFinished };
+const char* sessionStateName(SessionState state);
+// Running or paused: a search is under way (it may be resumed).
+inline bool underWay(SessionState state) {
+  return state == SessionState::kRunning || state == SessionState::kPaused;
+}
+// Stopped or finished: the worker has ended.
+inline bool ended(SessionState state) {
+  return state == SessionState::kStopped || state == SessionState::kFinished;
+}
+
 struct EvolveSettings {
-  std::string optimizer = "cmaes";  // "cmaes" or "ga"
-  int population = 0;               // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32)
-  int generations = 40;             // budget in generations, >= 0 (0: only the time budget)
-  double minutes = 0.0;             // wall-clock budget, minutes, >= 0 (0: none)
-  int threads = 0;                  // evaluation workers, >= 0 (0: every core)
+  OptimizerKind optimizer = OptimizerKind::kCmaes;
+  int population = 0;    // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32)
+  int generations = 40;  // budget in generations, >= 0 (0: only the time budget)
+  double minutes = 0.0;  // wall-clock budget, minutes, >= 0 (0: none)
+  int threads = 0;       // evaluation workers, >= 0 (0: every core)
   std::uint64_t seed = 1;
-  double initial_sigma = 0.02;      // CMA-ES step size (GA: mutation scale), normalised units,
-                                    // (0, 1]: small, the prior walks already
-  bool record_population = false;   // keep every individual's recorded motion in the snapshots
+  double initial_sigma = 0.02;     // CMA-ES step size (GA: mutation scale), normalised units,
+                                   // (0, 1]: small, the prior walks already
+  bool record_population = false;  // keep every individual's recorded motion in the snapshots
   int nice = 0;  // 0..19: the search threads' niceness (Linux). The editor uses 10 so that its UI
                  // thread gets the cores first while the search still takes whatever is left.
 
@@ -53,7 +72,7 @@ struct TermStats {
 };
 
 struct GenerationRecord {
-  int generation = 0;        // 1 for the first finished generation
+  int generation = 0;         // 1 for the first finished generation
   long long evaluations = 0;  // so far
   double wall_s = 0.0;        // since the session (or its first part, when resumed) started
   TermStats total;
@@ -71,7 +90,7 @@ struct Snapshot {
   std::vector<std::vector<double>> population;  // the last finished generation's points
   std::vector<FitnessTerms> population_terms;
   std::vector<motion::Clip> population_motions;  // when record_population
-  std::string state;  // "ready", "running", "paused", "stopped", "finished"
+  SessionState state = SessionState::kReady;
 };
 
 class Session {
@@ -83,11 +102,11 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  void start();   // runs on a background thread until the budget, stop() or convergence
-  void pause();   // returns once the worker is idle
+  void start();  // runs on a background thread until the budget, stop() or convergence
+  void pause();  // returns once the worker is idle
   void resume();
-  void stop();    // returns once the worker has ended
-  void wait();    // until the worker ends by itself or is stopped
+  void stop();  // returns once the worker has ended
+  void wait();  // until the worker ends by itself or is stopped
   // One generation on the calling thread (not while started); false when the budget is spent
   // or the run was cancelled.
   bool runGeneration();
@@ -99,13 +118,13 @@ class Session {
   nlohmann::json checkpoint() const;
   const Problem& problem() const { return problem_; }
   const EvolveSettings& settings() const { return settings_; }
-  bool finished() const;  // budget spent or converged
+  bool finished() const;   // budget spent or converged
   int population() const;  // individuals in the current generation
 
  private:
   Session(Problem problem, const EvolveSettings& settings);
   void workerLoop();
-  void publish(const std::string& state);
+  void publish(SessionState state);
 
   Problem problem_;
   EvolveSettings settings_;
