@@ -99,17 +99,8 @@ void unknownKeys(const json& object, std::initializer_list<const char*> known,
   }
 }
 
-}  // namespace
-
-Result<Project> parseProject(const std::string& text, const std::filesystem::path& base,
-                             const std::string& name, std::vector<std::string>* warnings) {
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    return Status::error(name + ": not JSON: " + e.what());
-  }
-  const std::string where = name + ": ";
+// The format and version of a project document.
+Status checkHeader(const json& document, const std::string& where) {
   if (!document.is_object()) return Status::error(where + "expected a JSON object");
   if (document.value("format", json()) != "sinew.project")
     return Status::error(where + "format: expected \"sinew.project\"");
@@ -121,7 +112,101 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     return Status::error(where + "version: " + version.dump() +
                          " is newer than this sinew reads (1.." + std::to_string(kProjectVersion) +
                          "); update sinew");
+  return Status();
+}
 
+// "band_gains": {BAND: {GROUP: GAIN}}.
+Status readBandGains(const json& document, const std::string& where, MotionEdits& edits) {
+  if (document.contains("band_gains")) {
+    const json& bands = document.at("band_gains");
+    if (!bands.is_object()) return Status::error(where + "band_gains: expected an object");
+    for (const auto& [band, groups] : bands.items()) {
+      int b = -1;
+      for (int i = 0; i < kBandCount; ++i)
+        if (band == kBandNames[i]) b = i;
+      if (b < 0)
+        return Status::error(where + "band_gains: unknown band '" + band +
+                             "' (gait, style, detail)");
+      if (!groups.is_object())
+        return Status::error(where + "band_gains." + band + ": expected an object");
+      for (const auto& [group, gain] : groups.items()) {
+        int g = -1;
+        for (int i = 0; i < kGroupCount; ++i)
+          if (group == kGroupNames[i]) g = i;
+        if (g < 0)
+          return Status::error(where + "band_gains." + band + ": unknown group '" + group +
+                               "' (legs, arms, spine, head)");
+        if (!gain.is_number() || gain.get<double>() < 0.0 || gain.get<double>() > 10.0)
+          return Status::error(where + "band_gains." + band + "." + group +
+                               ": expected a number 0..10");
+        edits.band_gains[static_cast<size_t>(b)][static_cast<size_t>(g)] = gain.get<double>();
+      }
+    }
+  }
+  return Status();
+}
+
+// "search" and "view".
+Status readSearchAndView(const json& document, const std::string& where, const std::string& name,
+                         std::vector<std::string>* warnings, Project& project) {
+  Status status;
+  auto check = [&](Status s) {
+    if (status.ok() && !s.ok()) status = std::move(s);
+  };
+  if (document.contains("search")) {
+    const json& search = document.at("search");
+    const std::string in = where + "search.";
+    if (!search.is_object()) return Status::error(where + "search: expected an object");
+    unknownKeys(search, {"minutes", "population", "no_prior", "optimizer", "seed", "weights"},
+                "search.", name, warnings);
+    check(read(search, "minutes", project.search.minutes, in));
+    check(read(search, "population", project.search.population, in));
+    check(read(search, "no_prior", project.search.no_prior, in));
+    check(read(search, "seed", project.search.seed, in));
+    std::string optimizer = search::optimizerName(project.search.optimizer);
+    check(read(search, "optimizer", optimizer, in));
+    if (status.ok()) {
+      Result<search::OptimizerKind> kind = search::optimizerFromName(optimizer);
+      if (!kind.ok()) return Status::error(in + "optimizer: " + kind.message());
+      project.search.optimizer = kind.value();
+    }
+    if (search.contains("weights"))
+      check(readWeights(search.at("weights"), project.search.weights, in));
+  }
+  if (document.contains("view")) {
+    const json& view = document.at("view");
+    const std::string in = where + "view.";
+    if (!view.is_object()) return Status::error(where + "view: expected an object");
+    unknownKeys(view,
+                {"speed", "loop", "show_original", "show_model", "model_beside", "follow",
+                 "show_grid", "show_end_sites", "show_population"},
+                "view.", name, warnings);
+    ViewSettings& v = project.view;
+    check(read(view, "speed", v.speed, in));
+    check(read(view, "loop", v.loop, in));
+    check(read(view, "show_original", v.show_original, in));
+    check(read(view, "show_model", v.show_model, in));
+    check(read(view, "model_beside", v.model_beside, in));
+    check(read(view, "follow", v.follow, in));
+    check(read(view, "show_grid", v.show_grid, in));
+    check(read(view, "show_end_sites", v.show_end_sites, in));
+    check(read(view, "show_population", v.show_population, in));
+  }
+  return status;
+}
+
+}  // namespace
+
+Result<Project> parseProject(const std::string& text, const std::filesystem::path& base,
+                             const std::string& name, std::vector<std::string>* warnings) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    return Status::error(name + ": not JSON: " + e.what());
+  }
+  const std::string where = name + ": ";
+  if (Status valid = checkHeader(document, where); !valid.ok()) return valid;
   unknownKeys(document,
               {"format", "version", "rig", "clip", "animation", "target", "harmonics",
                "joint_harmonics", "band_gains", "styles", "secondary", "terrain", "window_s",
@@ -162,33 +247,7 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
       project.joint_k[joint] = k.get<int>();
     }
   }
-  if (document.contains("band_gains")) {
-    const json& bands = document.at("band_gains");
-    if (!bands.is_object()) return Status::error(where + "band_gains: expected an object");
-    for (const auto& [band, groups] : bands.items()) {
-      int b = -1;
-      for (int i = 0; i < kBandCount; ++i)
-        if (band == kBandNames[i]) b = i;
-      if (b < 0)
-        return Status::error(where + "band_gains: unknown band '" + band +
-                             "' (gait, style, detail)");
-      if (!groups.is_object())
-        return Status::error(where + "band_gains." + band + ": expected an object");
-      for (const auto& [group, gain] : groups.items()) {
-        int g = -1;
-        for (int i = 0; i < kGroupCount; ++i)
-          if (group == kGroupNames[i]) g = i;
-        if (g < 0)
-          return Status::error(where + "band_gains." + band + ": unknown group '" + group +
-                               "' (legs, arms, spine, head)");
-        if (!gain.is_number() || gain.get<double>() < 0.0 || gain.get<double>() > 10.0)
-          return Status::error(where + "band_gains." + band + "." + group +
-                               ": expected a number 0..10");
-        project.edits.band_gains[static_cast<size_t>(b)][static_cast<size_t>(g)] =
-            gain.get<double>();
-      }
-    }
-  }
+  if (Status gains = readBandGains(document, where, project.edits); !gains.ok()) return gains;
   // A list of objects under `key`: `each` reads one, given its index and the message prefix.
   auto objects = [&](const char* key, auto each) -> Status {
     if (!document.contains(key)) return Status();
@@ -246,45 +305,7 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     if (!overrides.ok()) return Status::error(where + "body: " + overrides.message());
     project.physics.body = std::move(overrides).value();
   }
-  if (document.contains("search")) {
-    const json& search = document.at("search");
-    const std::string in = where + "search.";
-    if (!search.is_object()) return Status::error(where + "search: expected an object");
-    unknownKeys(search, {"minutes", "population", "no_prior", "optimizer", "seed", "weights"},
-                "search.", name, warnings);
-    check(read(search, "minutes", project.search.minutes, in));
-    check(read(search, "population", project.search.population, in));
-    check(read(search, "no_prior", project.search.no_prior, in));
-    check(read(search, "seed", project.search.seed, in));
-    std::string optimizer = search::optimizerName(project.search.optimizer);
-    check(read(search, "optimizer", optimizer, in));
-    if (status.ok()) {
-      Result<search::OptimizerKind> kind = search::optimizerFromName(optimizer);
-      if (!kind.ok()) return Status::error(in + "optimizer: " + kind.message());
-      project.search.optimizer = kind.value();
-    }
-    if (search.contains("weights"))
-      check(readWeights(search.at("weights"), project.search.weights, in));
-  }
-  if (document.contains("view")) {
-    const json& view = document.at("view");
-    const std::string in = where + "view.";
-    if (!view.is_object()) return Status::error(where + "view: expected an object");
-    unknownKeys(view,
-                {"speed", "loop", "show_original", "show_model", "model_beside", "follow",
-                 "show_grid", "show_end_sites", "show_population"},
-                "view.", name, warnings);
-    ViewSettings& v = project.view;
-    check(read(view, "speed", v.speed, in));
-    check(read(view, "loop", v.loop, in));
-    check(read(view, "show_original", v.show_original, in));
-    check(read(view, "show_model", v.show_model, in));
-    check(read(view, "model_beside", v.model_beside, in));
-    check(read(view, "follow", v.follow, in));
-    check(read(view, "show_grid", v.show_grid, in));
-    check(read(view, "show_end_sites", v.show_end_sites, in));
-    check(read(view, "show_population", v.show_population, in));
-  }
+  check(readSearchAndView(document, where, name, warnings, project));
   if (!status.ok()) return status;
 
   auto resolve = [&](std::string& file) {
