@@ -43,7 +43,7 @@ search::Problem problem(const motion::MotionAsset& asset, const physics::BodyPla
 
 Outcome run(search::Problem p, const std::string& optimizer, double budget_s) {
   search::EvolveSettings settings;
-  settings.optimizer = optimizer;
+  settings.optimizer = search::optimizerFromName(optimizer).value();
   settings.generations = 0;
   settings.minutes = budget_s / 60.0;
   settings.seed = 1;

@@ -1,4 +1,5 @@
-// `sinew edit [PROJECT | FILE] [--animation NAME] [--evolve [--evolve-minutes M]] [--screenshot
+// `sinew edit [PROJECT | FILE] [--animation NAME] [--evolve [--evolve-minutes M]
+// [--evolve-generations G --export DIR]] [--screenshot
 // OUT.png --frames N [--evolve-generations G] [--panel-shots DIR]] [--bench --shown N]
 // [--no-shadows] [--no-mesh]`: the editor.
 #include <cstdint>
@@ -30,9 +31,12 @@ void addEditCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.1, 600.0));
   command
       ->add_option("--evolve-generations", options->evolve_generations,
-                   "With --screenshot and --evolve: wait for this many generations first "
-                   "(at most 2 minutes)")
+                   "With --evolve: the search's budget in generations (with --screenshot: "
+                   "wait for this many first, at most 2 minutes)")
       ->check(CLI::Range(0, 10000));
+  command->add_option("--export", options->export_dir,
+                      "With --evolve: no window; run the search (--evolve-generations, else "
+                      "--evolve-minutes) and write what `sinew evolve --out DIR` writes here");
   command
       ->add_option("--shown", options->shown,
                    "Individuals of the population drawn in the viewport, best first (default 8)")
@@ -45,12 +49,18 @@ void addEditCommand(CLI::App& app, int& exit_code) {
       "--bench", options->bench,
       "Print the editor's frame time (median, 95th percentile): --frames frames of the "
       "clip alone, then as many while the search runs with --shown characters");
-  command->add_flag_function("--no-shadows", [options](std::int64_t) { options->shadows = false; },
-                    "Start with the key light's shadows off (the Timeline's Shadows toggle)");
-  command->add_flag_function("--no-mesh", [options](std::int64_t) { options->mesh = false; },
-                    "Start with glTF characters drawn as capsules, not their skinned meshes");
+  command->add_flag_function(
+      "--no-shadows", [options](std::int64_t) { options->shadows = false; },
+      "Start with the key light's shadows off (the Timeline's Shadows toggle)");
+  command->add_flag_function(
+      "--no-mesh", [options](std::int64_t) { options->mesh = false; },
+      "Start with glTF characters drawn as capsules, not their skinned meshes");
   command->callback([options, &exit_code] {
     if (options->file.empty()) options->file = SINEW_ASSET_DIR "/default.sinew.json";
+    if (!options->export_dir.empty() && !options->evolve) {
+      exit_code = fail("--export writes a search's results: give --evolve too");
+      return;
+    }
     options->shader_dir = SINEW_SHADER_DIR;
     exit_code = editor::runEditor(*options);
   });

@@ -9,8 +9,6 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <map>
-#include <sstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -19,6 +17,7 @@
 #include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
+#include "sinew/pipeline/pipeline.h"
 #include "sinew/search/session.h"
 
 namespace sinew::app {
@@ -29,6 +28,8 @@ extern "C" void onInterrupt(int) {
   g_interrupted = true;
 }
 
+// The command line as given; what it means for the search is a pipeline::ProjectSettings
+// (chosenSettings), the same struct a project file and the editor fill.
 struct EvolveArgs {
   std::string project;
   std::string rig;
@@ -50,36 +51,13 @@ struct EvolveArgs {
   std::string terrain = "flat";
   std::vector<std::string> pushes;
   std::vector<std::string> weights;
-  search::FitnessWeights project_weights;  // the project's; --weights changes them term by term
-  std::map<std::string, int> joint_k;      // the project's K per joint, by name
-  MotionEdits edits;                       // the project's band gains, styles, secondary motion
   ImportFlags import;
   BodyFlags body;
+  std::vector<std::string> given;  // the flags given ("--harmonics", ...)
+  bool has(const char* flag) const {
+    return std::find(given.begin(), given.end(), flag) != given.end();
+  }
 };
-
-std::string historyCsv(const search::Snapshot& snap) {
-  std::ostringstream csv;
-  csv.precision(10);
-  csv << "generation,evaluations,wall_s,total_best,total_mean,total_worst";
-  for (int k = 0; k < search::kFitnessTermCount; ++k) {
-    const std::string n = search::fitnessTermName(k);
-    csv << ',' << n << "_best," << n << "_mean," << n << "_worst";
-  }
-  csv << ",best_survived_s,best_distance_m,scored,diverged\n";
-  for (const search::GenerationRecord& r : snap.history) {
-    csv << r.generation << ',' << r.evaluations << ',' << r.wall_s;
-    if (r.scored == 0) {  // nothing scored: empty cells, not inf or nan
-      csv << std::string(3 * (search::kFitnessTermCount + 1) + 2, ',');
-    } else {
-      csv << ',' << r.total.best << ',' << r.total.mean << ',' << r.total.worst;
-      for (const search::TermStats& t : r.terms)
-        csv << ',' << t.best << ',' << t.mean << ',' << t.worst;
-      csv << ',' << r.best_survived_s << ',' << r.best_distance_m;
-    }
-    csv << ',' << r.scored << ',' << r.diverged << '\n';
-  }
-  return csv.str();
-}
 
 std::string termsLine(const search::FitnessTerms& t) {
   char line[256];
@@ -92,66 +70,9 @@ std::string termsLine(const search::FitnessTerms& t) {
                                           : std::string(line);
 }
 
-int runEvolve(EvolveArgs args) {
-  // A resumed search is the same search: the rig, motion, window and terrain come from the
-  // checkpoint's "problem" (what this command wrote there).
-  nlohmann::json checkpoint;
-  if (!args.resume.empty()) {
-    Result<std::string> text = readFile(args.resume);
-    if (!text.ok()) return fail(text.message());
-    try {
-      checkpoint = nlohmann::json::parse(text.value());
-      const nlohmann::json& problem = checkpoint.at("problem");
-      args.rig = problem.at("rig").get<std::string>();
-      args.clip = problem.at("clip").get<std::string>();
-      args.target_path = problem.at("target").get<std::string>();
-      args.animation = problem.at("animation").get<std::string>();
-      args.harmonics = problem.at("harmonics").get<int>();
-      args.window = problem.at("window_s").get<double>();
-      args.terrain = problem.at("terrain").get<std::string>();
-      args.pushes = problem.at("pushes").get<std::vector<std::string>>();
-      args.body.masses = problem.at("masses").get<std::vector<std::string>>();
-      args.body.fixed = problem.at("fixed").get<std::vector<std::string>>();
-      args.body.hinge_limits = problem.at("hinge_limits").get<std::vector<std::string>>();
-      args.no_prior = problem.at("no_prior").get<bool>();
-      if (problem.contains("project")) {
-        Result<Project> fragment =
-            parseProject(problem.at("project").dump(), {}, args.resume + ": problem.project");
-        if (!fragment.ok()) return fail(fragment.message());
-        args.joint_k = fragment.value().joint_k;
-        args.edits = fragment.value().edits;
-      }
-    } catch (const nlohmann::json::exception& e) {
-      return fail(args.resume + ": not a checkpoint of sinew evolve: " + e.what());
-    }
-  }
-  Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
-                                              args.harmonics, args.import, args.body, args.joint_k);
-  if (!loaded.ok()) return fail(loaded.message());
-  LoadedRig& rig = loaded.value();
-  if (!args.edits.empty() && args.target_path.empty()) {
-    // The project's edits of the model, as the editor applies them.
-    std::vector<spectral::StyleVector> measured;
-    measured.reserve(args.edits.styles.size());
-    for (const StylePair& pair : args.edits.styles) {
-      Result<spectral::StyleVector> style = measureStylePair(pair, rig.asset.skeleton);
-      if (!style.ok()) return fail("style '" + pair.label + "': " + style.message());
-      measured.push_back(std::move(style).value());
-    }
-    std::vector<const spectral::StyleVector*> styles;
-    for (const spectral::StyleVector& style : measured) styles.push_back(&style);
-    Result<spectral::TargetMotion> edited =
-        applyMotionEdits(rig.target, rig.asset.skeleton, args.edits, styles);
-    if (!edited.ok()) return fail(edited.message());
-    rig.target = std::move(edited).value();
-    rig.what += " with the project's edits";
-  }
-
-  Result<physics::SimulationSettings> simulation =
-      simulationSettings(args.window, args.terrain, args.pushes);
-  if (!simulation.ok()) return fail(simulation.message());
-  search::FitnessWeights weights = args.project_weights;
-  for (const std::string& text : args.weights) {
+// --weights TERM=VALUE, term by term over `weights`.
+Status applyWeightFlags(const std::vector<std::string>& flags, search::FitnessWeights& weights) {
+  for (const std::string& text : flags) {
     const size_t eq = text.find('=');
     int term = -1;
     for (int k = 0; k < search::kFitnessTermCount; ++k)
@@ -165,56 +86,136 @@ int runEvolve(EvolveArgs args) {
       value = -1.0;
     }
     if (term < 0 || !(value >= 0.0))
-      return fail("--weights '" + text +
-                  "': expected TERM=VALUE >= 0, TERM one of fall, tracking, "
-                  "speed, heading, placement, upright, energy");
+      return Status::error("--weights '" + text +
+                           "': expected TERM=VALUE >= 0, TERM one of fall, tracking, "
+                           "speed, heading, placement, upright, energy");
     search::fitnessWeight(weights, term) = value;
   }
-  search::GenomeSettings genome;
-  genome.no_prior = args.no_prior;
-  Result<search::Problem> problem = search::Problem::create(
-      rig.plan, rig.asset.skeleton, rig.target, genome, simulation.value(), weights);
-  if (!problem.ok()) return fail(problem.message());
+  return Status();
+}
 
-  std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
-  if (ec) return fail(args.out + ": cannot create the output folder: " + ec.message());
-  const std::filesystem::path out(args.out);
+// The project (or --rig and the defaults), then the command line's own flags over it.
+Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
+  pipeline::ProjectSettings s;
+  if (args.rig.empty()) {
+    const std::string path = args.project.empty() ? kDefaultProject : args.project;
+    std::vector<std::string> warnings;
+    Result<Project> project = loadProject(path, &warnings);
+    if (!project.ok()) return project.status();
+    for (const std::string& warning : warnings)
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    s = project.value();
+  } else {
+    s.rig = args.rig;
+  }
+  if (!args.clip.empty()) s.clip = args.clip;
+  if (!args.target_path.empty()) s.target = args.target_path;
+  if (!args.animation.empty()) s.animation = args.animation;
+  if (args.has("--harmonics")) s.harmonics = args.harmonics;
+  if (args.has("--window")) s.physics.window_s = args.window;
+  if (args.has("--population")) s.search.population = args.population;
+  if (args.has("--seed")) s.search.seed = args.seed;
+  if (args.has("--no-prior")) s.search.no_prior = args.no_prior;
+  if (args.has("--optimizer")) {
+    Result<search::OptimizerKind> kind = search::optimizerFromName(args.optimizer);
+    if (!kind.ok()) return Status::error("--optimizer: " + kind.message());
+    s.search.optimizer = kind.value();
+  }
+  if (args.has("--terrain")) {
+    Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
+    if (!terrain.ok()) return terrain.status();
+    s.physics.terrain = terrain.value();
+  }
+  // Pushes and body overrides: the flags' first, then the project's.
+  std::vector<physics::Push> pushes;
+  for (const std::string& text : args.pushes) {
+    Result<physics::Push> push = parsePush(text);
+    if (!push.ok()) return push.status();
+    pushes.push_back(push.value());
+  }
+  pushes.insert(pushes.end(), s.physics.pushes.begin(), s.physics.pushes.end());
+  s.physics.pushes = std::move(pushes);
+  Result<BodyOverrides> flags = args.body.overrides();
+  if (!flags.ok()) return flags.status();
+  BodyOverrides body = std::move(flags).value();
+  const BodyOverrides& own = s.physics.body;
+  body.masses.insert(body.masses.end(), own.masses.begin(), own.masses.end());
+  body.fixed.insert(body.fixed.end(), own.fixed.begin(), own.fixed.end());
+  body.hinge_limits.insert(body.hinge_limits.end(), own.hinge_limits.begin(),
+                           own.hinge_limits.end());
+  s.physics.body = std::move(body);
+  if (Status w = applyWeightFlags(args.weights, s.search.weights); !w.ok()) return w;
+  return s;
+}
 
-  search::EvolveSettings settings;
-  settings.optimizer = args.optimizer;
-  settings.population = args.population;
-  settings.generations = args.generations;
-  settings.minutes = args.minutes;
-  if (args.generations == 0 && args.minutes == 0.0)
-    return fail("--generations 0 with no --minutes gives the search no budget");
-  if (args.generations < 0) settings.generations = args.minutes > 0.0 ? 0 : 40;  // not given
-  if (!args.resume.empty() && (args.population > 0 || args.optimizer != "cmaes"))
-    return fail(
+// A resumed search is the same search: its settings are the checkpoint's "problem" (the project
+// JSON this command wrote there; checkpoints from before carry the same fields flat).
+Result<pipeline::ProjectSettings> checkpointSettings(const nlohmann::json& checkpoint,
+                                                     const std::string& name) {
+  try {
+    const nlohmann::json& problem = checkpoint.at("problem");
+    if (problem.contains("format")) {
+      Result<Project> project = parseProject(problem.dump(), {}, name + ": problem");
+      if (!project.ok()) return project.status();
+      return pipeline::ProjectSettings(project.value());
+    }
+    nlohmann::json old = problem.contains("project") ? problem.at("project")
+                                                     : nlohmann::json{{"format", "sinew.project"},
+                                                                      {"version", kProjectVersion}};
+    for (const char* key :
+         {"rig", "clip", "target", "animation", "harmonics", "window_s", "terrain", "pushes"})
+      old[key] = problem.at(key);
+    old["body"] = {{"masses", problem.at("masses")},
+                   {"fixed", problem.at("fixed")},
+                   {"hinge_limits", problem.at("hinge_limits")}};
+    old["search"] = {{"no_prior", problem.at("no_prior")}};
+    Result<Project> project = parseProject(old.dump(), {}, name + ": problem");
+    if (!project.ok()) return project.status();
+    return pipeline::ProjectSettings(project.value());
+  } catch (const nlohmann::json::exception& e) {
+    return Status::error(name + ": not a checkpoint of sinew evolve: " + e.what());
+  }
+}
+
+// The session: a new one, or the checkpoint's continued with a new budget and weights.
+Result<std::unique_ptr<search::Session>> makeSession(const EvolveArgs& args,
+                                                     const pipeline::ProjectSettings& chosen,
+                                                     search::Problem problem,
+                                                     const nlohmann::json& checkpoint) {
+  if (args.resume.empty()) {
+    if (args.generations == 0 && args.minutes == 0.0)
+      return Status::error("--generations 0 with no --minutes gives the search no budget");
+    search::EvolveSettings settings = pipeline::evolveSettings(chosen.search);
+    settings.minutes = args.minutes;
+    settings.generations = args.generations >= 0 ? args.generations  // -1: not given
+                                                 : (args.minutes > 0.0 ? 0 : 40);
+    settings.threads = args.threads;
+    if (args.sigma > 0.0) settings.initial_sigma = args.sigma;
+    return search::Session::create(std::move(problem), settings);
+  }
+  if (args.population > 0 || args.has("--optimizer"))
+    return Status::error(
         "--resume continues the search as it was: --population and --optimizer come "
         "from the checkpoint");
-  settings.threads = args.threads;
-  settings.seed = args.seed;
-  if (args.sigma > 0.0) settings.initial_sigma = args.sigma;
-  Result<std::unique_ptr<search::Session>> made = Status::error("no session");
-  if (!args.resume.empty()) {
-    made = search::Session::resume(std::move(problem).value(), checkpoint);
-    if (!made.ok()) return fail(args.resume + ": " + made.message());
-    if (args.generations > 0 || args.minutes > 0.0) {
-      Status budget = made.value()->setBudget(std::max(0, args.generations), args.minutes);
-      if (!budget.ok()) return fail(budget.message());
-    }
-    if (!args.weights.empty()) made.value()->setWeights(weights);  // from the next generation
-    if (made.value()->finished())
-      return fail(args.resume + ": the search's budget (" +
-                  std::to_string(made.value()->settings().generations) + " generations, " +
-                  std::to_string(made.value()->settings().minutes) +
-                  " minutes) is spent: give --generations or --minutes (totals) to go on");
-  } else {
-    made = search::Session::create(std::move(problem).value(), settings);
-    if (!made.ok()) return fail(made.message());
-  }
+  Result<std::unique_ptr<search::Session>> made =
+      search::Session::resume(std::move(problem), checkpoint);
+  if (!made.ok()) return Status::error(args.resume + ": " + made.message());
   search::Session& session = *made.value();
+  if (args.generations > 0 || args.minutes > 0.0) {
+    if (Status budget = session.setBudget(std::max(0, args.generations), args.minutes); !budget.ok())
+      return budget;
+  }
+  if (!args.weights.empty()) session.setWeights(chosen.search.weights);  // from the next generation
+  if (session.finished())
+    return Status::error(args.resume + ": the search's budget (" +
+                         std::to_string(session.settings().generations) + " generations, " +
+                         std::to_string(session.settings().minutes) +
+                         " minutes) is spent: give --generations or --minutes (totals) to go on");
+  return made;
+}
+
+void printStart(const search::Session& session, const std::string& what, const EvolveArgs& args,
+                const pipeline::ProjectSettings& chosen) {
   const search::EvolveSettings& used = session.settings();
   const int threads = used.threads > 0 ? used.threads : search::hardwareThreads();
   char budget[64];
@@ -228,14 +229,18 @@ int runEvolve(EvolveArgs args) {
   std::printf(
       "evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.1f "
       "s, seed %llu%s\n",
-      rig.what.c_str(), session.problem().layout.size(),
-      used.optimizer == "cmaes" ? "CMA-ES" : "genetic algorithm",
-      args.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
+      what.c_str(), session.problem().layout.size(),
+      used.optimizer == search::OptimizerKind::kCmaes ? "CMA-ES" : "genetic algorithm",
+      chosen.search.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
       session.population(), budget, threads, threads == 1 ? "" : "s",
       session.problem().simulation.seconds, static_cast<unsigned long long>(used.seed),
       args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
   std::fflush(stdout);
+}
 
+// Runs the session to its end (or Ctrl-C), a line per generation. Returns whether interrupted.
+bool runWithProgress(search::Session& session) {
+  const search::EvolveSettings& used = session.settings();
   g_interrupted = false;
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
@@ -253,85 +258,83 @@ int runEvolve(EvolveArgs args) {
     for (; printed < static_cast<int>(snap->history.size()); ++printed) {
       const search::GenerationRecord& r = snap->history[static_cast<size_t>(printed)];
       const double rate = r.wall_s > 0.0 ? static_cast<double>(r.evaluations) / r.wall_s : 0.0;
-      std::string left;
-      if (used.generations > 0) {
-        const double per = r.wall_s / std::max(1, r.generation);
-        char eta[64];
-        std::snprintf(eta, sizeof eta, ", %.0f s left",
-                      per * std::max(0, used.generations - r.generation));
-        left = eta;
-      } else if (used.minutes > 0.0) {
-        char eta[64];
-        std::snprintf(eta, sizeof eta, ", %.0f s left",
-                      std::max(0.0, used.minutes * 60.0 - r.wall_s));
-        left = eta;
-      }
+      double left_s = -1.0;
+      if (used.generations > 0)
+        left_s =
+            r.wall_s / std::max(1, r.generation) * std::max(0, used.generations - r.generation);
+      else if (used.minutes > 0.0)
+        left_s = std::max(0.0, used.minutes * 60.0 - r.wall_s);
+      char left[64] = "";
+      if (left_s >= 0.0) std::snprintf(left, sizeof left, ", %.0f s left", left_s);
       const std::string diverged =
           r.diverged == 0 ? ""
           : r.scored == 0 ? "  (the whole generation diverged: " + std::to_string(r.diverged) + ")"
                           : "  (" + std::to_string(r.diverged) + " diverged)";
       if (snap->best_point.empty())
         std::printf("gen %3d  best none yet: no evaluation scored%s  %.1f eval/s%s\n", r.generation,
-                    diverged.c_str(), rate, left.c_str());
+                    diverged.c_str(), rate, left);
       else
         std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s%s\n", r.generation,
-                    termsLine(snap->best_terms).c_str(), r.total.mean, rate, left.c_str(),
-                    diverged.c_str());
+                    termsLine(snap->best_terms).c_str(), r.total.mean, rate, left, diverged.c_str());
       std::fflush(stdout);
     }
-    if (snap->state == "finished" || snap->state == "stopped") break;
+    if (search::ended(snap->state)) break;
   }
   session.wait();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
+  return interrupted;
+}
+
+int runEvolve(const EvolveArgs& args) {
+  // Settings: the checkpoint's (a resumed search), or the project's with the flags over them.
+  nlohmann::json checkpoint;
+  Result<pipeline::ProjectSettings> chosen = Status::error("no settings");
+  if (!args.resume.empty()) {
+    Result<std::string> text = readFile(args.resume);
+    if (!text.ok()) return fail(text.message());
+    try {
+      checkpoint = nlohmann::json::parse(text.value());
+    } catch (const nlohmann::json::exception& e) {
+      return fail(args.resume + ": not a checkpoint of sinew evolve: " + e.what());
+    }
+    chosen = checkpointSettings(checkpoint, args.resume);
+    if (chosen.ok()) {
+      if (Status w = applyWeightFlags(args.weights, chosen.value().search.weights); !w.ok())
+        return fail(w.message());
+    }
+  } else {
+    chosen = chosenSettings(args);
+  }
+  if (!chosen.ok()) return fail(chosen.message());
+  const pipeline::ProjectSettings& settings = chosen.value();
+
+  // The problem: the engine's one path from settings to a search.
+  Result<LoadedRig> loaded = loadRig(settings, args.import);
+  if (!loaded.ok()) return fail(loaded.message());
+  const LoadedRig& rig = loaded.value();
+  Result<pipeline::SearchSetup> setup =
+      pipeline::prepareSearch(rig.asset.skeleton, rig.clip(), settings);
+  if (!setup.ok()) return fail(setup.message());
+  Result<std::unique_ptr<search::Session>> made =
+      makeSession(args, settings, std::move(setup.value().problem), checkpoint);
+  if (!made.ok()) return fail(made.message());
+  search::Session& session = *made.value();
+  printStart(session, setup.value().what, args, settings);
+  const bool interrupted = runWithProgress(session);
 
   const auto snap = session.snapshot();
-  nlohmann::json saved_state = session.checkpoint();
-  // Paths are bytes and JSON text is UTF-8: a Latin-1 file name is stored converted.
-  saved_state["problem"] = {{"rig", toUtf8(args.rig)},
-                            {"clip", toUtf8(args.clip)},
-                            {"target", toUtf8(args.target_path)},
-                            {"animation", args.animation},
-                            {"harmonics", args.harmonics},
-                            {"window_s", args.window},
-                            {"terrain", args.terrain},
-                            {"no_prior", args.no_prior},
-                            {"pushes", args.pushes},
-                            {"masses", args.body.masses},
-                            {"fixed", args.body.fixed},
-                            {"hinge_limits", args.body.hinge_limits}};
-  {
-    // K per joint and the model's edits, as a project fragment (absolute paths).
-    Project fragment;
-    fragment.rig = toUtf8(args.rig);
-    fragment.harmonics = args.harmonics;
-    fragment.joint_k = args.joint_k;
-    fragment.edits = args.edits;
-    saved_state["problem"]["project"] = nlohmann::json::parse(projectJson(fragment, {}));
-  }
-  Status saved = writeFileAtomically(
-      out / "checkpoint.json",
-      saved_state.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  if (!saved.ok()) return fail(saved.message());
-  saved = writeFileAtomically(out / "history.csv", historyCsv(*snap));
-  if (!saved.ok()) return fail(saved.message());
+  const std::filesystem::path out(args.out);
+  Result<bool> wrote = pipeline::writeSearchResults(session, rig.asset,
+                                                    nlohmann::json::parse(settingsJson(settings)),
+                                                    resultsMeta(settings, session.settings()), out);
+  if (!wrote.ok()) return fail(wrote.message());
   if (!snap->failure.empty()) return fail(args.out + ": " + snap->failure);
-  if (snap->best_point.empty()) {
+  if (!wrote.value()) {
     std::printf("no generation finished: wrote %s and %s only\n",
                 (out / "checkpoint.json").string().c_str(), (out / "history.csv").string().c_str());
     return interrupted ? 130 : 0;
   }
-  // The best controller, replayed once more with recording, written three ways.
-  search::ControllerFile meta;
-  meta.terrain = args.terrain;
-  meta.seed = used.seed;
-  meta.optimizer = used.optimizer;
-  meta.no_prior = args.no_prior;
-  meta.rig = args.rig;
-  meta.clip = args.clip.empty() ? args.rig : args.clip;
-  saved = search::exportBest(session.problem(), snap->best_point, snap->best_terms, rig.asset, out,
-                             meta);
-  if (!saved.ok()) return fail(saved.message());
   std::printf("best after %d generations (%lld evaluations): %s\n", snap->generation,
               snap->evaluations, termsLine(snap->best_terms).c_str());
   std::printf("wrote %s: best.bvh, best.glb, best.json, history.csv, checkpoint.json\n",
@@ -400,40 +403,12 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   args->import.addTo(*command);
   args->body.addTo(*command);
   command->callback([args, command, &exit_code]() {
-    if (!args->project.empty() && !args->rig.empty()) {
+    for (const char* flag : {"--harmonics", "--terrain", "--window", "--population", "--optimizer",
+                             "--seed", "--no-prior"})
+      if (command->count(flag) > 0) args->given.emplace_back(flag);
+    if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");
-      return;
-    }
-    if (args->rig.empty() && args->resume.empty()) {
-      const std::string path = args->project.empty() ? kDefaultProject : args->project;
-      Result<Project> project = loadProject(path);
-      if (!project.ok()) {
-        exit_code = fail(project.message());
-        return;
-      }
-      const Project& p = project.value();
-      args->rig = p.rig;
-      if (args->clip.empty()) args->clip = p.clip;
-      if (args->target_path.empty()) args->target_path = p.target;
-      if (args->animation.empty()) args->animation = p.animation;
-      // The command line's own flags win over the project's.
-      if (command->count("--harmonics") == 0) args->harmonics = p.harmonics;
-      if (command->count("--terrain") == 0) args->terrain = p.terrain;
-      if (command->count("--window") == 0) args->window = p.window_s;
-      if (command->count("--population") == 0) args->population = p.search.population;
-      if (command->count("--optimizer") == 0) args->optimizer = p.search.optimizer;
-      if (command->count("--seed") == 0) args->seed = p.search.seed;
-      if (command->count("--no-prior") == 0) args->no_prior = p.search.no_prior;
-      args->project_weights = p.search.weights;
-      args->joint_k = p.joint_k;
-      args->edits = p.edits;
-      args->pushes.insert(args->pushes.end(), p.pushes.begin(), p.pushes.end());
-      args->body.masses.insert(args->body.masses.end(), p.body.masses.begin(), p.body.masses.end());
-      args->body.fixed.insert(args->body.fixed.end(), p.body.fixed.begin(), p.body.fixed.end());
-      args->body.hinge_limits.insert(args->body.hinge_limits.end(), p.body.hinge_limits.begin(),
-                                     p.body.hinge_limits.end());
-    }
-    if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))
+    else if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))
       exit_code = fail(
           "--resume continues the search as it was: the rig, clip, window and "
           "terrain come from the checkpoint");

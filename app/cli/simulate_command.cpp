@@ -15,8 +15,8 @@
 #include "sinew/core/text.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
-#include "sinew/spectral/analysis.h"
-#include "sinew/spectral/target_io.h"
+#include "sinew/pipeline/pipeline.h"
+#include "sinew/search/controller_io.h"
 
 namespace sinew::app {
 namespace {
@@ -75,16 +75,37 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
 int runSimulate(const SimulateArgs& args) {
   if (!args.controller_path.empty() && !args.target_path.empty())
     return fail("--controller and --target both give the coefficients: choose one");
-  Result<LoadedRig> loaded = loadRigAndTarget(args.rig, args.clip, args.target_path, args.animation,
-                                              args.harmonics, args.import, args.body);
+  // The flags as the pipeline's settings; the engine makes the target and the body from them.
+  pipeline::ProjectSettings chosen;
+  chosen.rig = args.rig;
+  chosen.clip = args.clip;
+  chosen.target = args.target_path;
+  chosen.animation = args.animation;
+  chosen.harmonics = args.harmonics;
+  chosen.physics.window_s = args.seconds;
+  Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
+  if (!terrain.ok()) return fail(terrain.message());
+  chosen.physics.terrain = terrain.value();
+  for (const std::string& text : args.pushes) {
+    Result<physics::Push> push = parsePush(text);
+    if (!push.ok()) return fail(push.message());
+    chosen.physics.pushes.push_back(push.value());
+  }
+  Result<BodyOverrides> body = args.body.overrides();
+  if (!body.ok()) return fail(body.message());
+  chosen.physics.body = std::move(body).value();
+  Result<LoadedRig> loaded = loadRig(chosen, args.import);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
   const motion::Skeleton& skeleton = rig.asset.skeleton;
-
-  Result<physics::SimulationSettings> simulation =
-      simulationSettings(args.seconds, args.terrain, args.pushes);
-  if (!simulation.ok()) return fail(simulation.message());
-  physics::SimulationSettings& settings = simulation.value();
+  Result<physics::BodyPlan> built =
+      pipeline::bodyPlan(skeleton, rig.clip(), chosen.physics.body, chosen.rig);
+  if (!built.ok()) return fail(built.message());
+  Result<pipeline::TrackedMotion> tracked = pipeline::trackedMotion(skeleton, rig.clip(), chosen);
+  if (!tracked.ok()) return fail(tracked.message());
+  spectral::TargetMotion target = std::move(tracked.value().target);
+  std::string what = std::move(tracked.value().what);
+  physics::SimulationSettings settings = pipeline::simulationSettings(chosen.physics);
   settings.tracking.feedback = !args.no_feedback;
   if (!args.controller_path.empty()) {
     // An evolved controller: its coefficients and its balance gains.
@@ -93,8 +114,8 @@ int runSimulate(const SimulateArgs& args) {
     if (!controller.ok()) return fail(controller.message());
     for (const std::string& warning : controller.value().warnings)
       std::fprintf(stderr, "sinew: warning: %s\n", warning.c_str());
-    rig.target = controller.value().target;
-    rig.what = args.controller_path;
+    target = controller.value().target;
+    what = args.controller_path;
     settings.tracking.balance = controller.value().balance;
   }
   if (!args.balance.empty()) {
@@ -117,9 +138,7 @@ int runSimulate(const SimulateArgs& args) {
     b.torso = args.balance[4];
   }
   settings.start_moving = !args.from_standing;
-  const physics::BodyPlan& plan = rig.plan;
-  const spectral::TargetMotion& target = rig.target;
-  const std::string& what = rig.what;
+  const physics::BodyPlan& plan = built.value();
 
   std::printf(
       "%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 #include <vector>
 
 #include <GLFW/glfw3.h>
@@ -165,12 +166,12 @@ void handleKeys(EditorState& state, FilesPanelState& files_panel,
       if (press.key == GLFW_KEY_S && !press.repeat) saveOpenProject(state, files_panel);
       if (press.key == GLFW_KEY_N && !press.repeat) newProject(state);
     } else if (press.key == GLFW_KEY_E && !press.repeat) {
-      const std::string run = state.evolution.snapshot ? state.evolution.snapshot->state : "";
+      const search::SessionState run = evolutionState(state);
       if (shift) {
         stopEvolution(state);
-      } else if (run == "running") {
+      } else if (run == search::SessionState::kRunning) {
         pauseEvolution(state);
-      } else if (run == "paused") {
+      } else if (run == search::SessionState::kPaused) {
         resumeEvolution(state);
       } else {
         startEvolution(state);
@@ -323,7 +324,26 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) 
 
 }  // namespace
 
+int runHeadlessEvolve(const EditorOptions& options) {
+  EditorState state;
+  if (!openAny(state, options.file, options.animation)) return 1;
+  state.evolution.settings.search.minutes = options.evolve_minutes;
+  if (!startEvolution(state, options.evolve_generations)) return 1;
+  while (!search::ended(evolutionState(state))) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    pollEvolution(state);
+  }
+  pollEvolution(state);
+  if (!exportEvolutionResults(state, options.export_dir)) return 1;
+  if (state.evolution.snapshot && !state.evolution.snapshot->best_point.empty()) {
+    std::printf("sinew edit: best after %d generations: cost %.17g\n",
+                state.evolution.snapshot->generation, state.evolution.snapshot->best_terms.total);
+  }
+  return 0;
+}
+
 int runEditor(const EditorOptions& options) {
+  if (!options.export_dir.empty()) return runHeadlessEvolve(options);
   glfwSetErrorCallback(onGlfwError);
   if (glfwInit() == GLFW_FALSE) {
     std::cerr << "sinew edit: cannot open a window (no display? set DISPLAY or run under "
@@ -412,9 +432,9 @@ int runEditor(const EditorOptions& options) {
       if (!openAny(state, options.file, options.animation)) startUntitled(state);
     }
     state.evolution.settings.shown = options.shown;
-    if (options.bench) state.evolution.settings.minutes = options.evolve_minutes;
+    if (options.bench) state.evolution.settings.search.minutes = options.evolve_minutes;
     if (options.evolve) {
-      state.evolution.settings.minutes = options.evolve_minutes;
+      state.evolution.settings.search.minutes = options.evolve_minutes;
       startEvolution(state);
     }
     if (state.analysis)
@@ -531,8 +551,8 @@ int runEditor(const EditorOptions& options) {
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
       const double elapsed_s = std::chrono::duration<double>(now - start).count();
-      const bool searching =
-          state.evolution.snapshot && state.evolution.snapshot->state == "running";
+      const bool searching = state.evolution.snapshot &&
+                             state.evolution.snapshot->state == search::SessionState::kRunning;
       const int generation = state.evolution.snapshot ? state.evolution.snapshot->generation : 0;
       if (options.bench) {
         // The frame-time benchmark: the clip alone, then the population replaying while the

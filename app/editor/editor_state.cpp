@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "sinew/pipeline/pipeline.h"
 #include "sinew/spectral/target_io.h"
 
 namespace sinew::editor {
@@ -142,7 +143,7 @@ bool openFile(EditorState& state, const std::filesystem::path& path, const std::
   // Edits and body overrides name joints of the old rig; a project opened next brings its own.
   state.edits = {};
   state.style_cache.clear();
-  state.evolution.settings.body = {};
+  state.evolution.settings.physics.body = {};
   state.rig_path.clear();
   state.target_path.clear();
   state.evolution.export_dir = (path.parent_path() / (path.stem().string() + "_evolved")).string();
@@ -198,7 +199,7 @@ void setJointK(EditorState& state, std::vector<int> joint_k) {
 const physics::BodyPlan* bodyPlan(EditorState& state) {
   EditorState::BodyPlanCache& cache = state.body_cache;
   const motion::Clip* clip = state.clip();
-  const app::BodyOverrides& overrides = state.evolution.settings.body;
+  const app::BodyOverrides& overrides = state.evolution.settings.physics.body;
   if (cache.file == state.file_path.string() && cache.clip_index == state.clip_index &&
       cache.overrides == overrides && (cache.plan || !cache.error.empty())) {
     return cache.plan ? &*cache.plan : nullptr;
@@ -212,13 +213,8 @@ const physics::BodyPlan* bodyPlan(EditorState& state) {
     cache.error = "open a clip first";
     return nullptr;
   }
-  Result<physics::BodyPlanSettings> settings = app::parseBodyOverrides(overrides);
-  if (!settings.ok()) {
-    cache.error = settings.message();
-    return nullptr;
-  }
   Result<physics::BodyPlan> plan =
-      physics::buildBodyPlan(state.asset->skeleton, clip, settings.value());
+      pipeline::bodyPlan(state.asset->skeleton, *clip, overrides, state.file_name);
   if (!plan.ok()) {
     cache.error = plan.message();
     return nullptr;
@@ -227,34 +223,20 @@ const physics::BodyPlan* bodyPlan(EditorState& state) {
   return &*cache.plan;
 }
 
-namespace {
-
-// Removes "NAME=..." (or "NAME" exactly) entries of `link` from a list of overrides.
-void eraseOverride(std::vector<std::string>& list, const std::string& link) {
-  list.erase(std::remove_if(list.begin(), list.end(),
-                            [&](const std::string& entry) {
-                              return entry == link || entry.rfind(link + "=", 0) == 0;
-                            }),
-             list.end());
-}
-
-}  // namespace
-
 void setBodyMass(EditorState& state, const std::string& link, double kg) {
-  std::vector<std::string>& masses = state.evolution.settings.body.masses;
-  eraseOverride(masses, link);
-  char value[64];
-  std::snprintf(value, sizeof value, "%.3g", kg);
-  masses.push_back(link + "=" + value);
+  std::vector<app::MassOverride>& masses = state.evolution.settings.physics.body.masses;
+  clearBodyMass(state, link);
+  masses.push_back({link, kg});
 }
 
 void clearBodyMass(EditorState& state, const std::string& link) {
-  eraseOverride(state.evolution.settings.body.masses, link);
+  std::vector<app::MassOverride>& masses = state.evolution.settings.physics.body.masses;
+  std::erase_if(masses, [&](const app::MassOverride& m) { return m.link == link; });
 }
 
 void setBodyWelded(EditorState& state, const std::string& link, bool welded) {
-  std::vector<std::string>& fixed = state.evolution.settings.body.fixed;
-  eraseOverride(fixed, link);
+  std::vector<std::string>& fixed = state.evolution.settings.physics.body.fixed;
+  std::erase(fixed, link);
   if (welded) fixed.push_back(link);
 }
 

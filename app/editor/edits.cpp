@@ -1,10 +1,12 @@
 // The Style panel's model: band gains, styles and secondary motion applied to the harmonic model
-// (app::applyMotionEdits, shared with `sinew evolve PROJECT`), with the measured styles cached.
+// (pipeline::applyMotionEdits, shared with `sinew evolve PROJECT`), with the measured styles
+// cached.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "editor/editor_state.h"
+#include "sinew/pipeline/pipeline.h"
 
 namespace sinew::editor {
 
@@ -13,7 +15,7 @@ const Result<spectral::StyleVector>& styleOf(EditorState& state, const app::Styl
   auto found = state.style_cache.find(key);
   if (found == state.style_cache.end()) {
     Result<spectral::StyleVector> measured =
-        state.asset ? app::measureStylePair(pair, state.asset->skeleton)
+        state.asset ? pipeline::measureStylePair(pair, state.asset->skeleton)
                     : Result<spectral::StyleVector>(Status::error("open a clip first"));
     found = state.style_cache
                 .emplace(key,
@@ -57,7 +59,7 @@ bool applyEdits(EditorState& state) {
     styles.push_back(style.ok() ? &style.value() : nullptr);
   }
   Result<spectral::TargetMotion> edited =
-      app::applyMotionEdits(analysis.model, state.asset->skeleton, state.edits, styles);
+      pipeline::applyMotionEdits(analysis.model, state.asset->skeleton, state.edits, styles);
   if (edited.ok()) {
     analysis.target = std::move(edited).value();
   } else {
@@ -73,16 +75,16 @@ Result<spectral::StyleScores> measureClipStyle(EditorState& state) {
   if (clip == nullptr) return Status::error("open a clip first");
   if (state.edits.styles.empty()) return Status::error("add a style pair first: it is the library");
   const motion::Skeleton& skeleton = state.asset->skeleton;
-  Result<spectral::TargetMotion> current = app::styleTarget(skeleton, *clip, state.file_name);
+  Result<spectral::TargetMotion> current = pipeline::styleTarget(skeleton, *clip, state.file_name);
   if (!current.ok()) return current.status();
   std::vector<std::pair<std::string, spectral::TargetMotion>> library;
   for (const app::StylePair& pair : state.edits.styles) {
     if (library.empty()) {
-      Result<spectral::TargetMotion> neutral = app::styleClipTarget(pair.neutral, skeleton);
+      Result<spectral::TargetMotion> neutral = pipeline::styleClipTarget(pair.neutral, skeleton);
       if (!neutral.ok()) return neutral.status();
       library.emplace_back("neutral", std::move(neutral).value());
     }
-    Result<spectral::TargetMotion> styled = app::styleClipTarget(pair.styled, skeleton);
+    Result<spectral::TargetMotion> styled = pipeline::styleClipTarget(pair.styled, skeleton);
     if (!styled.ok()) return styled.status();
     library.emplace_back(pair.label, std::move(styled).value());
   }

@@ -2,8 +2,11 @@
 
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
 #include "editor/editor_state.h"
-#include "sinew/physics/body_plan.h"
+#include "editor/project_model.h"
+#include "sinew/pipeline/pipeline.h"
 #include "sinew/search/controller_io.h"
 
 namespace sinew::editor {
@@ -20,7 +23,7 @@ std::string termsLine(const search::FitnessTerms& t) {
 
 }  // namespace
 
-bool startEvolution(EditorState& state) {
+bool startEvolution(EditorState& state, int generations) {
   EvolutionState& evolution = state.evolution;
   const motion::Clip* clip = state.clip();
   if (clip == nullptr || !state.analysis) {
@@ -28,80 +31,74 @@ bool startEvolution(EditorState& state) {
     return false;
   }
   stopEvolution(state);
-  const motion::Skeleton& skeleton = state.asset->skeleton;
-  const EvolutionSettings& chosen = evolution.settings;
-  Result<physics::BodyPlanSettings> body = app::parseBodyOverrides(chosen.body);
-  if (!body.ok()) {
-    state.log.error("evolve: body: " + body.message());
+  // The project as it is now, through the engine's one path to a search (as `sinew evolve`).
+  const app::Project project = captureProject(state);
+  std::vector<const spectral::StyleVector*> styles;
+  for (const app::StylePair& pair : project.edits.styles) {
+    const Result<spectral::StyleVector>& style = styleOf(state, pair);
+    if (!style.ok()) {
+      state.log.error("evolve: style '" + pair.label + "': " + style.message());
+      return false;
+    }
+    styles.push_back(&style.value());
+  }
+  Result<pipeline::SearchSetup> setup =
+      pipeline::prepareSearch(state.asset->skeleton, *clip, project, &styles);
+  if (!setup.ok()) {
+    state.log.error("evolve: " + setup.message());
     return false;
   }
-  Result<physics::BodyPlan> plan = physics::buildBodyPlan(skeleton, clip, body.value());
-  if (!plan.ok()) {
-    state.log.error("evolve: " + state.file_name + ": " + plan.message());
-    return false;
+  search::EvolveSettings settings = pipeline::evolveSettings(project.search);
+  if (generations > 0) {
+    settings.generations = generations;
+    settings.minutes = 0.0;
   }
-  Result<physics::SimulationSettings> simulation =
-      app::simulationSettings(chosen.window_s, chosen.terrain, chosen.pushes, "terrain", "push");
-  if (!simulation.ok()) {
-    state.log.error("evolve: " + simulation.message());
-    return false;
-  }
-  search::GenomeSettings genome;
-  genome.no_prior = evolution.settings.no_prior;
-  Result<search::Problem> problem =
-      search::Problem::create(plan.value(), skeleton, state.analysis->target, genome,
-                              simulation.value(), evolution.settings.weights);
-  if (!problem.ok()) {
-    state.log.error("evolve: " + problem.message());
-    return false;
-  }
-  search::EvolveSettings settings;
-  settings.generations = 0;
-  settings.minutes = evolution.settings.minutes;
-  settings.population = evolution.settings.population;
-  settings.optimizer = chosen.optimizer;
-  settings.seed = chosen.seed;
   settings.record_population = true;  // the viewport replays the population
   settings.nice = 10;  // the UI thread draws first; the search takes what the frames leave
   Result<std::unique_ptr<search::Session>> session =
-      search::Session::create(std::move(problem).value(), settings);
+      search::Session::create(std::move(setup.value().problem), settings);
   if (!session.ok()) {
     state.log.error("evolve: " + session.message());
     return false;
   }
   evolution.session = std::move(session).value();
+  evolution.started = project;
   evolution.reported_generation = 0;
   evolution.selected = -1;
   evolution.snapshot = evolution.session->snapshot();
   evolution.session->start();
-  char line[200];
-  std::snprintf(
-      line, sizeof line,
-      "evolve: %d coordinates, %s, population %d, %.1f min, %.0f s window on %s, %s on %d threads",
-      evolution.session->problem().layout.size(),
-      chosen.optimizer == "ga" ? "genetic algorithm" : "CMA-ES", evolution.session->population(),
-      settings.minutes, chosen.window_s, chosen.terrain.c_str(),
-      genome.no_prior ? "no prior" : "seeded from the model", search::hardwareThreads());
+  char budget[48];
+  if (generations > 0)
+    std::snprintf(budget, sizeof budget, "%d generations", generations);
+  else
+    std::snprintf(budget, sizeof budget, "%.1f min", settings.minutes);
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "evolve %s: %d coordinates, %s, population %d, %s, %.0f s window on %s, %s on %d "
+                "threads",
+                setup.value().what.c_str(), evolution.session->problem().layout.size(),
+                settings.optimizer == search::OptimizerKind::kGa ? "genetic algorithm" : "CMA-ES",
+                evolution.session->population(), budget, project.physics.window_s,
+                app::terrainText(project.physics.terrain).c_str(),
+                project.search.no_prior ? "no prior" : "seeded from the model",
+                search::hardwareThreads());
   state.log.info(line);
   return true;
 }
 
-namespace {
-
-std::string currentState(const EditorState& state) {
-  return state.evolution.session ? state.evolution.session->snapshot()->state : "";
+search::SessionState evolutionState(const EditorState& state) {
+  return state.evolution.session ? state.evolution.session->snapshot()->state
+                                 : search::SessionState::kReady;
 }
 
-}  // namespace
-
 void pauseEvolution(EditorState& state) {
-  if (currentState(state) != "running") return;
+  if (evolutionState(state) != search::SessionState::kRunning) return;
   state.evolution.session->pause();
   state.log.info("evolve: paused");
 }
 
 void resumeEvolution(EditorState& state) {
-  if (currentState(state) != "paused") return;
+  if (evolutionState(state) != search::SessionState::kPaused) return;
   state.evolution.session->resume();
   state.log.info("evolve: resumed");
 }
@@ -109,10 +106,10 @@ void resumeEvolution(EditorState& state) {
 void stopEvolution(EditorState& state) {
   EvolutionState& evolution = state.evolution;
   if (!evolution.session) return;
-  const std::string was = currentState(state);
+  const search::SessionState was = evolutionState(state);
   evolution.session->stop();
   evolution.snapshot = evolution.session->snapshot();
-  if (was == "running" || was == "paused") {
+  if (search::underWay(was)) {
     state.log.info("evolve: stopped after generation " +
                    std::to_string(evolution.snapshot->generation));
   }
@@ -121,7 +118,7 @@ void stopEvolution(EditorState& state) {
 void setEvolutionWeights(EditorState& state) {
   EvolutionState& evolution = state.evolution;
   if (!evolution.session) return;
-  evolution.session->setWeights(evolution.settings.weights);
+  evolution.session->setWeights(evolution.settings.search.weights);
   const int next = evolution.snapshot ? evolution.snapshot->generation + 1 : 1;
   state.log.info("evolve: new fitness weights from generation " + std::to_string(next));
 }
@@ -149,20 +146,34 @@ bool exportEvolutionBest(EditorState& state) {
     state.log.error("export: no generation has finished yet");
     return false;
   }
-  search::ControllerFile meta;
-  meta.optimizer = evolution.session->settings().optimizer;
-  meta.seed = evolution.session->settings().seed;
-  meta.no_prior = evolution.settings.no_prior;
-  meta.rig = state.file_path.string();
-  meta.clip = state.file_path.string();
   const Status saved =
       search::exportBest(evolution.session->problem(), evolution.snapshot->best_point,
-                         evolution.snapshot->best_terms, *state.asset, evolution.export_dir, meta);
+                         evolution.snapshot->best_terms, *state.asset, evolution.export_dir,
+                         app::resultsMeta(evolution.started, evolution.session->settings()));
   if (!saved.ok()) {
     state.log.error("export: " + saved.message());
     return false;
   }
   state.log.info("export: wrote best.json, best.bvh and best.glb to " + evolution.export_dir);
+  return true;
+}
+
+bool exportEvolutionResults(EditorState& state, const std::filesystem::path& dir) {
+  EvolutionState& evolution = state.evolution;
+  if (!evolution.session) {
+    state.log.error("export: no search has run");
+    return false;
+  }
+  Result<bool> wrote = pipeline::writeSearchResults(
+      *evolution.session, *state.asset, nlohmann::json::parse(app::settingsJson(evolution.started)),
+      app::resultsMeta(evolution.started, evolution.session->settings()), dir);
+  if (!wrote.ok()) {
+    state.log.error("export: " + wrote.message());
+    return false;
+  }
+  state.log.info("export: wrote checkpoint.json, history.csv" +
+                 std::string(wrote.value() ? ", best.json, best.bvh and best.glb" : "") + " to " +
+                 dir.string());
   return true;
 }
 

@@ -17,35 +17,31 @@ namespace sinew::editor {
 
 struct EditorState;
 
+// The Evolve and Body panels' settings: the engine's structs, which the project saves as they are.
 struct EvolutionSettings {
-  double minutes = 2.0;     // wall-clock budget, > 0
-  double window_s = 10.0;   // seconds simulated per evaluation
-  int population = 0;      // 0: CMA-ES's default (4 + 3 ln n)
-  bool no_prior = false;    // the baseline: random start, generic ranges
-  int shown = 8;            // individuals drawn in the viewport, best first
-  search::FitnessWeights weights;  // the fitness terms' weights; live while a search runs
-  std::string optimizer = "cmaes";  // "cmaes" or "ga"
-  std::uint64_t seed = 1;   // same seed, same search (on the same number of threads)
-  // The physical problem (a project's terrain, pushes and body overrides, as text).
-  std::string terrain = "flat";
-  std::vector<std::string> pushes;
-  app::BodyOverrides body;
+  pipeline::PhysicsSettings physics;  // window, terrain, pushes, body overrides
+  pipeline::SearchSettings search;    // budget, population, optimiser, seed, weights (the weights
+                                      // are live while a search runs)
+  int shown = 8;                      // individuals drawn in the viewport, best first
 };
 
 struct EvolutionState {
   EvolutionSettings settings;
   std::unique_ptr<search::Session> session;
+  pipeline::ProjectSettings started;  // what the session was built from (its results record it)
   std::shared_ptr<const search::Snapshot> snapshot;  // the latest published
-  int reported_generation = 0;  // the last generation written to the log
-  bool show_population = true;  // draw the population's runs beside the clip
-  int selected = -1;  // the individual clicked in the viewport (index in the snapshot's
-                      // population), -1 for none; cleared when a new generation arrives
-  std::string export_dir;        // where "Export best" writes; default beside the opened file
+  int reported_generation = 0;                       // the last generation written to the log
+  bool show_population = true;                       // draw the population's runs beside the clip
+  int selected = -1;       // the individual clicked in the viewport (index in the snapshot's
+                           // population), -1 for none; cleared when a new generation arrives
+  std::string export_dir;  // where "Export best" writes; default beside the opened file
 };
 
-// Starts a search on the loaded clip and its current model; says in the log why not when it
-// cannot (nothing loaded, no analysis, a plan that does not build). Replaces a running search.
-bool startEvolution(EditorState& state);
+// Starts a search on the loaded clip with the project as the editor has it now (captureProject),
+// through the engine's pipeline::prepareSearch, as `sinew evolve PROJECT` does; says in the log
+// why not when it cannot (nothing loaded, no analysis, a plan that does not build). Replaces a
+// running search. `generations` > 0: that budget instead of the settings' minutes.
+bool startEvolution(EditorState& state, int generations = 0);
 void pauseEvolution(EditorState& state);
 void resumeEvolution(EditorState& state);
 void stopEvolution(EditorState& state);  // within one simulation step; keeps the snapshot
@@ -55,5 +51,9 @@ void setEvolutionWeights(EditorState& state);
 void pollEvolution(EditorState& state);
 // Writes best.json, best.bvh and best.glb of the best so far into evolution.export_dir.
 bool exportEvolutionBest(EditorState& state);
+// Writes what `sinew evolve PROJECT --out DIR` writes (checkpoint.json, history.csv, best.*).
+bool exportEvolutionResults(EditorState& state, const std::filesystem::path& dir);
+// The running search's state (kReady when there is none).
+search::SessionState evolutionState(const EditorState& state);
 
 }  // namespace sinew::editor

@@ -101,17 +101,24 @@ std::string describeChange(const app::Project& before, const app::Project& after
     }
   }
   if (before.edits.secondary != after.edits.secondary) changes.push_back("secondary motion");
-  if (before.terrain != after.terrain) changes.push_back("terrain " + after.terrain);
-  if (before.window_s != after.window_s)
-    changes.push_back("window " + number(after.window_s) + " s");
-  if (before.pushes != after.pushes) changes.push_back("pushes");
-  if (before.body != after.body) changes.push_back("body overrides");
+  const app::PhysicsSettings& pa = before.physics;
+  const app::PhysicsSettings& pb = after.physics;
+  if (app::terrainText(pa.terrain) != app::terrainText(pb.terrain))
+    changes.push_back("terrain " + app::terrainText(pb.terrain));
+  if (pa.window_s != pb.window_s) changes.push_back("window " + number(pb.window_s) + " s");
+  {
+    app::PhysicsSettings same = pa;
+    same.pushes = pb.pushes;
+    if (!(same == pa)) changes.push_back("pushes");
+  }
+  if (!(pa.body == pb.body)) changes.push_back("body overrides");
   const app::SearchSettings& a = before.search;
   const app::SearchSettings& b = after.search;
   if (a.minutes != b.minutes) changes.push_back("budget " + number(b.minutes) + " min");
   if (a.population != b.population) changes.push_back("population " + std::to_string(b.population));
   if (a.no_prior != b.no_prior) changes.push_back("no prior " + onOff(b.no_prior));
-  if (a.optimizer != b.optimizer) changes.push_back("optimizer " + b.optimizer);
+  if (a.optimizer != b.optimizer)
+    changes.push_back(std::string("optimizer ") + search::optimizerName(b.optimizer));
   if (a.seed != b.seed) changes.push_back("seed " + std::to_string(b.seed));
   search::FitnessWeights wa = a.weights, wb = b.weights;
   for (int term = 0; term < search::kFitnessTermCount; ++term) {

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "sinew/core/file_io.h"
+#include "sinew/pipeline/pipeline.h"
 
 namespace sinew::editor {
 namespace {
@@ -52,17 +53,8 @@ app::Project captureProject(const EditorState& state) {
     }
   }
   project.edits = state.edits;
-  const EvolutionSettings& e = state.evolution.settings;
-  project.terrain = e.terrain;
-  project.window_s = e.window_s;
-  project.pushes = e.pushes;
-  project.body = e.body;
-  project.search.minutes = e.minutes;
-  project.search.population = e.population;
-  project.search.no_prior = e.no_prior;
-  project.search.optimizer = e.optimizer;
-  project.search.seed = e.seed;
-  project.search.weights = e.weights;
+  project.physics = state.evolution.settings.physics;
+  project.search = state.evolution.settings.search;
   app::ViewSettings& v = project.view;
   v.speed = state.playback.speed;
   v.loop = state.playback.loop;
@@ -93,34 +85,22 @@ bool applyProject(EditorState& state, const app::Project& project) {
   state.target_path = project.target;
 
   if (state.analysis && state.asset) {
-    const motion::Skeleton& skeleton = state.asset->skeleton;
-    std::vector<int> joint_k(static_cast<size_t>(skeleton.jointCount()), project.harmonics);
-    for (const auto& [name, k] : project.joint_k) {
-      const int joint = skeleton.findJoint(name);
-      if (joint < 0) {
-        state.log.warning("joint_harmonics: " + state.file_name + " has no joint called '" + name +
-                          "'; ignored");
-        continue;
-      }
-      joint_k[static_cast<size_t>(joint)] = k;
+    // As `sinew evolve` resolves them: a joint the rig does not have is an error naming it.
+    Result<std::vector<int>> joint_k = pipeline::resolveJointK(
+        state.asset->skeleton, project.harmonics, project.joint_k, state.file_name);
+    if (!joint_k.ok()) {
+      state.log.error(joint_k.message() + " (K per joint not applied)");
+    } else if (joint_k.value() != state.analysis->joint_k) {
+      setJointK(state, std::move(joint_k).value());
     }
-    if (joint_k != state.analysis->joint_k) setJointK(state, std::move(joint_k));
   }
 
   state.edits = project.edits;
   applyEdits(state);
   EvolutionSettings& e = state.evolution.settings;
-  const bool weights_changed = !(e.weights == project.search.weights);
-  e.terrain = project.terrain;
-  e.window_s = project.window_s;
-  e.pushes = project.pushes;
-  e.body = project.body;
-  e.minutes = project.search.minutes;
-  e.population = project.search.population;
-  e.no_prior = project.search.no_prior;
-  e.optimizer = project.search.optimizer;
-  e.seed = project.search.seed;
-  e.weights = project.search.weights;
+  const bool weights_changed = !(e.search.weights == project.search.weights);
+  e.physics = project.physics;
+  e.search = project.search;
   if (weights_changed && state.evolution.session && !state.evolution.session->finished()) {
     setEvolutionWeights(state);
   }
@@ -138,11 +118,13 @@ bool applyProject(EditorState& state, const app::Project& project) {
 }
 
 bool openProject(EditorState& state, const std::filesystem::path& path) {
-  Result<app::Project> project = app::loadProject(path);
+  std::vector<std::string> warnings;
+  Result<app::Project> project = app::loadProject(path, &warnings);
   if (!project.ok()) {
     state.log.error(project.message());
     return false;
   }
+  for (std::string& warning : warnings) state.log.warning(std::move(warning));
   if (!applyProject(state, project.value())) {
     state.log.error(path.string() +
                     ": the project's files did not open (see above); nothing changed");

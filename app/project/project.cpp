@@ -1,14 +1,12 @@
 #include "project/project.h"
 
+#include <charconv>
+#include <initializer_list>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
-#include "sinew/motion/asset.h"
-#include "sinew/spectral/analysis.h"
-#include "sinew/spectral/bands.h"
-#include "sinew/spectral/secondary.h"
 
 namespace sinew::app {
 namespace {
@@ -87,17 +85,22 @@ Status readWeights(const json& object, search::FitnessWeights& weights, const st
   return Status();
 }
 
-}  // namespace
-
-Result<Project> parseProject(const std::string& text, const std::filesystem::path& base,
-                             const std::string& name) {
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& e) {
-    return Status::error(name + ": not JSON: " + e.what());
+// Names the keys of `object` that are not in `known` ("search.speed") in `warnings`.
+void unknownKeys(const json& object, std::initializer_list<const char*> known,
+                 const std::string& prefix, const std::string& name,
+                 std::vector<std::string>* warnings) {
+  if (warnings == nullptr || !object.is_object()) return;
+  for (const auto& [key, value] : object.items()) {
+    bool found = false;
+    for (const char* k : known) found = found || key == k;
+    if (!found)
+      warnings->push_back(name + ": unknown key '" + prefix + key +
+                          "' (left out; a newer sinew's?)");
   }
-  const std::string where = name + ": ";
+}
+
+// The format and version of a project document.
+Status checkHeader(const json& document, const std::string& where) {
   if (!document.is_object()) return Status::error(where + "expected a JSON object");
   if (document.value("format", json()) != "sinew.project")
     return Status::error(where + "format: expected \"sinew.project\"");
@@ -109,31 +112,11 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     return Status::error(where + "version: " + version.dump() +
                          " is newer than this sinew reads (1.." + std::to_string(kProjectVersion) +
                          "); update sinew");
+  return Status();
+}
 
-  Project project;
-  Status status;
-  auto check = [&](Status s) {
-    if (status.ok() && !s.ok()) status = std::move(s);
-  };
-  if (!document.contains("rig")) return Status::error(where + "rig: missing (the rig file)");
-  check(read(document, "rig", project.rig, where));
-  check(read(document, "clip", project.clip, where));
-  check(read(document, "animation", project.animation, where));
-  check(read(document, "target", project.target, where));
-  check(read(document, "harmonics", project.harmonics, where));
-  check(read(document, "terrain", project.terrain, where));
-  check(read(document, "window_s", project.window_s, where));
-  check(read(document, "pushes", project.pushes, where));
-  if (document.contains("joint_harmonics")) {
-    const json& joints = document.at("joint_harmonics");
-    if (!joints.is_object()) return Status::error(where + "joint_harmonics: expected an object");
-    for (const auto& [joint, k] : joints.items()) {
-      if (!k.is_number_integer() || k.get<int>() < 0 || k.get<int>() > 64)
-        return Status::error(where + "joint_harmonics." + joint +
-                             ": expected a whole number 0..64");
-      project.joint_k[joint] = k.get<int>();
-    }
-  }
+// "band_gains": {BAND: {GROUP: GAIN}}.
+Status readBandGains(const json& document, const std::string& where, MotionEdits& edits) {
   if (document.contains("band_gains")) {
     const json& bands = document.at("band_gains");
     if (!bands.is_object()) return Status::error(where + "band_gains: expected an object");
@@ -156,11 +139,115 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
         if (!gain.is_number() || gain.get<double>() < 0.0 || gain.get<double>() > 10.0)
           return Status::error(where + "band_gains." + band + "." + group +
                                ": expected a number 0..10");
-        project.edits.band_gains[static_cast<size_t>(b)][static_cast<size_t>(g)] =
-            gain.get<double>();
+        edits.band_gains[static_cast<size_t>(b)][static_cast<size_t>(g)] = gain.get<double>();
       }
     }
   }
+  return Status();
+}
+
+// "search" and "view".
+Status readSearchAndView(const json& document, const std::string& where, const std::string& name,
+                         std::vector<std::string>* warnings, Project& project) {
+  Status status;
+  auto check = [&](Status s) {
+    if (status.ok() && !s.ok()) status = std::move(s);
+  };
+  if (document.contains("search")) {
+    const json& search = document.at("search");
+    const std::string in = where + "search.";
+    if (!search.is_object()) return Status::error(where + "search: expected an object");
+    unknownKeys(search, {"minutes", "population", "no_prior", "optimizer", "seed", "weights"},
+                "search.", name, warnings);
+    check(read(search, "minutes", project.search.minutes, in));
+    check(read(search, "population", project.search.population, in));
+    check(read(search, "no_prior", project.search.no_prior, in));
+    check(read(search, "seed", project.search.seed, in));
+    std::string optimizer = search::optimizerName(project.search.optimizer);
+    check(read(search, "optimizer", optimizer, in));
+    if (status.ok()) {
+      Result<search::OptimizerKind> kind = search::optimizerFromName(optimizer);
+      if (!kind.ok()) return Status::error(in + "optimizer: " + kind.message());
+      project.search.optimizer = kind.value();
+    }
+    if (search.contains("weights"))
+      check(readWeights(search.at("weights"), project.search.weights, in));
+  }
+  if (document.contains("view")) {
+    const json& view = document.at("view");
+    const std::string in = where + "view.";
+    if (!view.is_object()) return Status::error(where + "view: expected an object");
+    unknownKeys(view,
+                {"speed", "loop", "show_original", "show_model", "model_beside", "follow",
+                 "show_grid", "show_end_sites", "show_population"},
+                "view.", name, warnings);
+    ViewSettings& v = project.view;
+    check(read(view, "speed", v.speed, in));
+    check(read(view, "loop", v.loop, in));
+    check(read(view, "show_original", v.show_original, in));
+    check(read(view, "show_model", v.show_model, in));
+    check(read(view, "model_beside", v.model_beside, in));
+    check(read(view, "follow", v.follow, in));
+    check(read(view, "show_grid", v.show_grid, in));
+    check(read(view, "show_end_sites", v.show_end_sites, in));
+    check(read(view, "show_population", v.show_population, in));
+  }
+  return status;
+}
+
+}  // namespace
+
+Result<Project> parseProject(const std::string& text, const std::filesystem::path& base,
+                             const std::string& name, std::vector<std::string>* warnings) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    return Status::error(name + ": not JSON: " + e.what());
+  }
+  const std::string where = name + ": ";
+  if (Status valid = checkHeader(document, where); !valid.ok()) return valid;
+  unknownKeys(document,
+              {"format", "version", "rig", "clip", "animation", "target", "harmonics",
+               "joint_harmonics", "band_gains", "styles", "secondary", "terrain", "window_s",
+               "pushes", "body", "search", "view"},
+              "", name, warnings);
+  Project project;
+  Status status;
+  auto check = [&](Status s) {
+    if (status.ok() && !s.ok()) status = std::move(s);
+  };
+  if (!document.contains("rig")) return Status::error(where + "rig: missing (the rig file)");
+  check(read(document, "rig", project.rig, where));
+  check(read(document, "clip", project.clip, where));
+  check(read(document, "animation", project.animation, where));
+  check(read(document, "target", project.target, where));
+  check(read(document, "harmonics", project.harmonics, where));
+  check(read(document, "window_s", project.physics.window_s, where));
+  std::string terrain = "flat";
+  std::vector<std::string> pushes;
+  check(read(document, "terrain", terrain, where));
+  check(read(document, "pushes", pushes, where));
+  if (!status.ok()) return status;
+  Result<physics::TerrainSettings> ground = parseTerrain(terrain, "terrain");
+  if (!ground.ok()) return Status::error(where + ground.message());
+  project.physics.terrain = ground.value();
+  for (const std::string& item : pushes) {
+    Result<physics::Push> push = parsePush(item, "pushes");
+    if (!push.ok()) return Status::error(where + push.message());
+    project.physics.pushes.push_back(push.value());
+  }
+  if (document.contains("joint_harmonics")) {
+    const json& joints = document.at("joint_harmonics");
+    if (!joints.is_object()) return Status::error(where + "joint_harmonics: expected an object");
+    for (const auto& [joint, k] : joints.items()) {
+      if (!k.is_number_integer() || k.get<int>() < 0 || k.get<int>() > 64)
+        return Status::error(where + "joint_harmonics." + joint +
+                             ": expected a whole number 0..64");
+      project.joint_k[joint] = k.get<int>();
+    }
+  }
+  if (Status gains = readBandGains(document, where, project.edits); !gains.ok()) return gains;
   // A list of objects under `key`: `each` reads one, given its index and the message prefix.
   auto objects = [&](const char* key, auto each) -> Status {
     if (!document.contains(key)) return Status();
@@ -174,6 +261,8 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     return Status();
   };
   Status lists = objects("styles", [&](const json& item, const std::string& in) {
+    unknownKeys(item, {"label", "neutral", "styled", "weight"}, in.substr(where.size()), name,
+                warnings);
     StylePair pair;
     check(read(item, "label", pair.label, in));
     check(read(item, "neutral", pair.neutral, in));
@@ -186,6 +275,8 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   });
   if (!lists.ok()) return lists;
   lists = objects("secondary", [&](const json& item, const std::string& in) {
+    unknownKeys(item, {"joint", "axis", "kind", "frequency_hz", "amplitude_deg", "seed"},
+                in.substr(where.size()), name, warnings);
     SecondaryMotion source;
     std::string kind = "periodic";
     check(read(item, "joint", source.joint, in));
@@ -204,37 +295,17 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   if (document.contains("body")) {
     const json& body = document.at("body");
     if (!body.is_object()) return Status::error(where + "body: expected an object");
-    check(read(body, "masses", project.body.masses, where + "body."));
-    check(read(body, "fixed", project.body.fixed, where + "body."));
-    check(read(body, "hinge_limits", project.body.hinge_limits, where + "body."));
+    unknownKeys(body, {"masses", "fixed", "hinge_limits"}, "body.", name, warnings);
+    std::vector<std::string> masses, fixed, hinge_limits;
+    check(read(body, "masses", masses, where + "body."));
+    check(read(body, "fixed", fixed, where + "body."));
+    check(read(body, "hinge_limits", hinge_limits, where + "body."));
+    if (!status.ok()) return status;
+    Result<BodyOverrides> overrides = parseBodyOverrides(masses, fixed, hinge_limits);
+    if (!overrides.ok()) return Status::error(where + "body: " + overrides.message());
+    project.physics.body = std::move(overrides).value();
   }
-  if (document.contains("search")) {
-    const json& search = document.at("search");
-    const std::string in = where + "search.";
-    if (!search.is_object()) return Status::error(where + "search: expected an object");
-    check(read(search, "minutes", project.search.minutes, in));
-    check(read(search, "population", project.search.population, in));
-    check(read(search, "no_prior", project.search.no_prior, in));
-    check(read(search, "optimizer", project.search.optimizer, in));
-    check(read(search, "seed", project.search.seed, in));
-    if (search.contains("weights"))
-      check(readWeights(search.at("weights"), project.search.weights, in));
-  }
-  if (document.contains("view")) {
-    const json& view = document.at("view");
-    const std::string in = where + "view.";
-    if (!view.is_object()) return Status::error(where + "view: expected an object");
-    ViewSettings& v = project.view;
-    check(read(view, "speed", v.speed, in));
-    check(read(view, "loop", v.loop, in));
-    check(read(view, "show_original", v.show_original, in));
-    check(read(view, "show_model", v.show_model, in));
-    check(read(view, "model_beside", v.model_beside, in));
-    check(read(view, "follow", v.follow, in));
-    check(read(view, "show_grid", v.show_grid, in));
-    check(read(view, "show_end_sites", v.show_end_sites, in));
-    check(read(view, "show_population", v.show_population, in));
-  }
+  check(readSearchAndView(document, where, name, warnings, project));
   if (!status.ok()) return status;
 
   auto resolve = [&](std::string& file) {
@@ -255,49 +326,14 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   return project;
 }
 
-Result<Project> loadProject(const std::filesystem::path& path) {
+Result<Project> loadProject(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   Result<std::string> text = readFile(path);
   if (!text.ok()) return text.status();
-  return parseProject(text.value(), path.parent_path(), path.string());
+  return parseProject(text.value(), path.parent_path(), path.string(), warnings);
 }
 
 Status validateProject(const Project& project) {
-  if (project.harmonics < 1 || project.harmonics > 64)
-    return Status::error("harmonics: must be 1..64, got " + std::to_string(project.harmonics));
-  if (!(project.window_s >= 0.5 && project.window_s <= 600.0))
-    return Status::error("window_s: must be 0.5..600 seconds");
-  if (Result<physics::TerrainSettings> t = parseTerrain(project.terrain, "terrain"); !t.ok())
-    return t.status();
-  for (const std::string& push : project.pushes) {
-    if (Result<physics::Push> p = parsePush(push, "pushes"); !p.ok()) return p.status();
-  }
-  if (Result<physics::BodyPlanSettings> b = parseBodyOverrides(project.body); !b.ok())
-    return Status::error("body: " + b.message());
-  const SearchSettings& s = project.search;
-  if (!(s.minutes > 0.0 && s.minutes <= 10000.0))
-    return Status::error("search.minutes: must be more than 0 (and at most 10000)");
-  if (s.population < 0 || s.population > 100000)
-    return Status::error("search.population: must be 0 (the optimiser's default) or more");
-  if (s.optimizer != "cmaes" && s.optimizer != "ga")
-    return Status::error("search.optimizer: expected \"cmaes\" or \"ga\", got \"" + s.optimizer +
-                         "\"");
-  if (Status w = s.weights.validate(); !w.ok())
-    return Status::error("search.weights: " + w.message());
-  for (size_t i = 0; i < project.edits.styles.size(); ++i) {
-    const StylePair& pair = project.edits.styles[i];
-    if (!(pair.weight >= -1.0 && pair.weight <= 2.0))
-      return Status::error("styles[" + std::to_string(i) + "].weight: must be -1..2");
-  }
-  for (size_t i = 0; i < project.edits.secondary.size(); ++i) {
-    const SecondaryMotion& m = project.edits.secondary[i];
-    const std::string in = "secondary[" + std::to_string(i) + "].";
-    if (m.joint.empty()) return Status::error(in + "joint: missing");
-    if (m.axis < 0 || m.axis > 2) return Status::error(in + "axis: must be 0, 1 or 2");
-    if (!(m.frequency_hz > 0.0 && m.frequency_hz <= 30.0))
-      return Status::error(in + "frequency_hz: must be in (0, 30]");
-    if (!(m.amplitude_deg >= 0.0 && m.amplitude_deg <= 30.0))
-      return Status::error(in + "amplitude_deg: must be 0..30");
-  }
+  if (Status valid = project.validate(); !valid.ok()) return valid;
   if (!(project.view.speed >= 0.1 && project.view.speed <= 4.0))
     return Status::error("view.speed: must be 0.1..4");
   return Status();
@@ -346,15 +382,19 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
     }
     out["secondary"] = secondary;
   }
-  out["terrain"] = project.terrain;
-  out["window_s"] = project.window_s;
-  out["pushes"] = project.pushes;
-  out["body"] = {{"masses", project.body.masses},
-                 {"fixed", project.body.fixed},
-                 {"hinge_limits", project.body.hinge_limits}};
+  const PhysicsSettings& physics = project.physics;
+  out["terrain"] = terrainText(physics.terrain);
+  out["window_s"] = physics.window_s;
+  json pushes = json::array();
+  for (const physics::Push& push : physics.pushes) pushes.push_back(pushText(push));
+  out["pushes"] = pushes;
+  json masses = json::array(), hinges = json::array();
+  for (const MassOverride& m : physics.body.masses) masses.push_back(massText(m));
+  for (const HingeLimitOverride& h : physics.body.hinge_limits) hinges.push_back(hingeLimitText(h));
+  out["body"] = {{"masses", masses}, {"fixed", physics.body.fixed}, {"hinge_limits", hinges}};
   const SearchSettings& s = project.search;
   out["search"] = {{"minutes", s.minutes},   {"population", s.population},
-                   {"no_prior", s.no_prior}, {"optimizer", s.optimizer},
+                   {"no_prior", s.no_prior}, {"optimizer", search::optimizerName(s.optimizer)},
                    {"seed", s.seed},         {"weights", weightsJson(s.weights)}};
   const ViewSettings& v = project.view;
   out["view"] = {{"speed", v.speed},
@@ -441,97 +481,64 @@ Result<physics::Push> parsePush(const std::string& text, const std::string& fiel
   return push;
 }
 
-Result<physics::SimulationSettings> simulationSettings(double seconds, const std::string& terrain,
-                                                       const std::vector<std::string>& pushes,
-                                                       const std::string& terrain_field,
-                                                       const std::string& push_field) {
-  physics::SimulationSettings simulation;
-  simulation.seconds = seconds;
-  Result<physics::TerrainSettings> ground = parseTerrain(terrain, terrain_field);
-  if (!ground.ok()) return ground.status();
-  simulation.world.terrain = ground.value();
-  for (const std::string& text : pushes) {
-    Result<physics::Push> push = parsePush(text, push_field);
-    if (!push.ok()) return push.status();
-    simulation.pushes.push_back(push.value());
-  }
-  return simulation;
+search::ControllerFile resultsMeta(const pipeline::ProjectSettings& settings,
+                                   const search::EvolveSettings& used) {
+  search::ControllerFile meta;
+  meta.terrain = terrainText(settings.physics.terrain);
+  meta.seed = used.seed;
+  meta.optimizer = search::optimizerName(used.optimizer);
+  meta.no_prior = settings.search.no_prior;
+  meta.rig = settings.rig;
+  meta.clip = settings.clip.empty() ? settings.rig : settings.clip;
+  return meta;
 }
 
-Result<spectral::TargetMotion> styleTarget(const motion::Skeleton& skeleton,
-                                           const motion::Clip& clip, const std::string& name) {
-  constexpr int kStyleHarmonics = 10;  // as `sinew style` analyses its clips
-  spectral::AnalysisSettings settings;
-  settings.harmonics = kStyleHarmonics;
-  Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, clip, settings);
-  if (!spectrum.ok()) return Status::error(name + ": " + spectrum.message());
-  return spectral::targetFromSpectrum(spectrum.value(), {}, clip.name);
+std::string settingsJson(const pipeline::ProjectSettings& settings) {
+  Project project;
+  static_cast<pipeline::ProjectSettings&>(project) = settings;
+  return projectJson(project, {});
 }
 
-Result<spectral::TargetMotion> styleClipTarget(const std::string& path,
-                                               const motion::Skeleton& skeleton) {
-  Result<motion::MotionAsset> asset = motion::importMotion(path);
-  if (!asset.ok()) return asset.status();
-  if (asset.value().clips.empty()) return Status::error(path + ": no animation");
-  if (asset.value().skeleton.names != skeleton.names)
-    return Status::error(path + ": its skeleton is not the open clip's (the joints differ)");
-  return styleTarget(asset.value().skeleton, asset.value().clips.front(), path);
+std::string numberText(double value) {
+  char text[64];
+  const std::to_chars_result written = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, written.ptr);
 }
 
-Result<spectral::StyleVector> measureStylePair(const StylePair& pair,
-                                               const motion::Skeleton& skeleton) {
-  Result<spectral::TargetMotion> neutral = styleClipTarget(pair.neutral, skeleton);
-  if (!neutral.ok()) return neutral.status();
-  Result<spectral::TargetMotion> styled = styleClipTarget(pair.styled, skeleton);
-  if (!styled.ok()) return styled.status();
-  return spectral::measureStyle(neutral.value(), styled.value(), pair.label);
+std::string terrainText(const physics::TerrainSettings& t) {
+  using Kind = physics::TerrainSettings::Kind;
+  switch (t.kind) {
+    case Kind::kFlat:
+      return "flat";
+    case Kind::kSlope:
+      return "slope:" + numberText(t.slope_deg);
+    case Kind::kSteps:
+      return "steps:" + numberText(t.step_height_m) + "," + numberText(t.step_depth_m);
+    case Kind::kRough:
+      return "rough:" + numberText(t.amplitude_m) + "," + std::to_string(t.seed);
+  }
+  return "flat";
 }
 
-Result<spectral::TargetMotion> applyMotionEdits(
-    const spectral::TargetMotion& model, const motion::Skeleton& skeleton, const MotionEdits& edits,
-    const std::vector<const spectral::StyleVector*>& styles) {
-  spectral::TargetMotion target = model;
-  if (edits.band_gains != MotionEdits().band_gains) {
-    spectral::BandGains gains;
-    for (size_t b = 0; b < gains.gains.size() && b < edits.band_gains.size(); ++b) {
-      for (size_t g = 0; g < gains.gains[b].size(); ++g) gains.gains[b][g] = edits.band_gains[b][g];
-    }
-    if (Status valid = gains.validate(); !valid.ok())
-      return Status::error("band_gains: " + valid.message());
-    target = spectral::applyBandGains(target, skeleton, gains);
-  }
-  std::vector<std::pair<const spectral::StyleVector*, double>> weighted;
-  for (size_t i = 0; i < edits.styles.size() && i < styles.size(); ++i) {
-    if (styles[i] != nullptr && edits.styles[i].weight != 0.0)
-      weighted.emplace_back(styles[i], edits.styles[i].weight);
-  }
-  if (!weighted.empty()) {
-    Result<spectral::TargetMotion> styled = spectral::applyStyles(target, weighted);
-    if (!styled.ok()) return Status::error("styles: " + styled.message());
-    target = std::move(styled).value();
-  }
-  if (!edits.secondary.empty()) {
-    spectral::SecondarySettings settings;
-    for (const SecondaryMotion& m : edits.secondary) {
-      spectral::SecondarySource source;
-      source.kind = m.noise ? spectral::SecondarySource::Kind::kNoise
-                            : spectral::SecondarySource::Kind::kPeriodic;
-      source.joint = m.joint;
-      source.axis = m.axis;
-      source.frequency_hz = m.frequency_hz;
-      source.amplitude_deg = m.amplitude_deg;
-      source.seed = m.seed;
-      settings.sources.push_back(source);
-    }
-    Result<spectral::TargetMotion> moved = spectral::addSecondaryMotion(target, skeleton, settings);
-    if (!moved.ok()) return Status::error("secondary: " + moved.message());
-    target = std::move(moved).value();
-  }
-  return target;
+std::string pushText(const physics::Push& push) {
+  std::string text = numberText(push.time_s) + "," + numberText(push.impulse_ns.x) + "," +
+                     numberText(push.impulse_ns.y) + "," + numberText(push.impulse_ns.z);
+  if (!push.link.empty()) text += "," + push.link;
+  return text;
 }
 
-Result<physics::BodyPlanSettings> parseBodyOverrides(const BodyOverrides& body) {
-  physics::BodyPlanSettings s;
+std::string massText(const MassOverride& mass) {
+  return mass.link + "=" + numberText(mass.kg);
+}
+
+std::string hingeLimitText(const HingeLimitOverride& limit) {
+  return limit.link + "=" + numberText(limit.lo_deg) + "," + numberText(limit.hi_deg);
+}
+
+Result<BodyOverrides> parseBodyOverrides(const std::vector<std::string>& masses,
+                                         const std::vector<std::string>& fixed,
+                                         const std::vector<std::string>& hinge_limits) {
+  BodyOverrides body;
   auto split = [](const std::string& text,
                   const char* flag) -> Result<std::pair<std::string, std::string>> {
     const size_t eq = text.find('=');
@@ -539,16 +546,15 @@ Result<physics::BodyPlanSettings> parseBodyOverrides(const BodyOverrides& body) 
       return Status::error(std::string(flag) + " '" + text + "': expected NAME=VALUE");
     return std::make_pair(text.substr(0, eq), text.substr(eq + 1));
   };
-  for (const std::string& m : body.masses) {
+  for (const std::string& m : masses) {
     auto parts = split(m, "--mass");
     if (!parts.ok()) return parts.status();
     Result<double> kg = parseNumber(parts.value().second, "--mass '" + m + "'");
     if (!kg.ok()) return kg.status();
-    s.mass_overrides.emplace_back(parts.value().first, kg.value());
+    body.masses.push_back({parts.value().first, kg.value()});
   }
-  for (const std::string& f : body.fixed)
-    s.type_overrides.emplace_back(f, physics::JointType::kFixed);
-  for (const std::string& h : body.hinge_limits) {
+  body.fixed = fixed;
+  for (const std::string& h : hinge_limits) {
     auto parts = split(h, "--hinge-limits");
     if (!parts.ok()) return parts.status();
     const std::vector<std::string> range = splitCommas(parts.value().second);
@@ -557,12 +563,11 @@ Result<physics::BodyPlanSettings> parseBodyOverrides(const BodyOverrides& body) 
     Result<double> hi = parseNumber(range[1], "--hinge-limits '" + h + "'");
     if (!lo.ok()) return lo.status();
     if (!hi.ok()) return hi.status();
-    constexpr double kRad = 3.14159265358979323846 / 180.0;
-    s.hinge_limit_overrides.emplace_back(parts.value().first,
-                                         std::make_pair(lo.value() * kRad, hi.value() * kRad));
+    body.hinge_limits.push_back({parts.value().first, lo.value(), hi.value()});
   }
-  if (Status v = s.validate(); !v.ok()) return Status::error("body overrides: " + v.message());
-  return s;
+  if (Result<physics::BodyPlanSettings> valid = body.planSettings(); !valid.ok())
+    return valid.status();
+  return body;
 }
 
 }  // namespace sinew::app

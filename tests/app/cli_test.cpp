@@ -370,7 +370,9 @@ TEST(CliTest, EvolveReadsAProject) {
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("window 1.5 s"), std::string::npos) << run.out;
   const nlohmann::json checkpoint = nlohmann::json::parse(test::readText(dir / "out" / "checkpoint.json"));
-  EXPECT_EQ(checkpoint["problem"]["fixed"][0], "LeftArm");
+  // The checkpoint's problem is the project's JSON (what the project file writes).
+  EXPECT_EQ(checkpoint["problem"]["format"], "sinew.project");
+  EXPECT_EQ(checkpoint["problem"]["body"]["fixed"][0], "LeftArm");
   const auto broken = dir / "broken.sinew.json";
   test::writeText(broken, "{\"format\": \"sinew.project\", \"version\": 1}");
   const test::CommandResult refused =
@@ -420,7 +422,7 @@ TEST(CliTest, EvolveAppliesTheProjectsEditsAndKeepsThemOnResume) {
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("with the project's edits"), std::string::npos) << run.out;
   const nlohmann::json checkpoint = nlohmann::json::parse(test::readText(dir / "out" / "checkpoint.json"));
-  EXPECT_EQ(checkpoint["problem"]["project"]["band_gains"]["detail"]["arms"], 0.0);
+  EXPECT_EQ(checkpoint["problem"]["band_gains"]["detail"]["arms"], 0.0);
   const test::CommandResult resumed =
       test::runSinew("evolve --resume " + test::quote(dir / "out" / "checkpoint.json") +
                      " --generations 2 --out " + test::quote(dir / "out2"));

@@ -29,14 +29,27 @@ int jointIndex(const editor::EditorState& state, const std::string& name) {
   return state.asset->skeleton.findJoint(name);
 }
 
+// The typed settings of a terrain or push as the project file writes them.
+physics::TerrainSettings terrainOf(const std::string& text) {
+  Result<physics::TerrainSettings> terrain = app::parseTerrain(text);
+  EXPECT_TRUE(terrain.ok()) << terrain.message();
+  return terrain.ok() ? terrain.value() : physics::TerrainSettings();
+}
+
+physics::Push pushOf(const std::string& text) {
+  Result<physics::Push> push = app::parsePush(text);
+  EXPECT_TRUE(push.ok()) << push.message();
+  return push.ok() ? push.value() : physics::Push();
+}
+
 TEST(ProjectFileTest, TheBundledVersion1ProjectLoadsWithDefaults) {
   Result<app::Project> project = app::loadProject(defaultProject());
   ASSERT_TRUE(project.ok()) << project.message();
   const app::Project& p = project.value();
   EXPECT_EQ(std::filesystem::path(p.rig), test::sourceDir() / "assets" / "biped_walk.bvh");
   EXPECT_EQ(p.harmonics, 5);
-  EXPECT_EQ(p.terrain, "flat");
-  EXPECT_EQ(p.window_s, 10.0);
+  EXPECT_EQ(app::terrainText(p.physics.terrain), "flat");
+  EXPECT_EQ(p.physics.window_s, 10.0);
   EXPECT_TRUE(p.joint_k.empty());
   EXPECT_EQ(p.search, app::SearchSettings());
   EXPECT_EQ(p.view, app::ViewSettings());
@@ -49,16 +62,16 @@ TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
   p.animation = "biped_walk";
   p.harmonics = 4;
   p.joint_k = {{"LeftUpLeg", 7}, {"Head", 0}};
-  p.terrain = "slope:3";
-  p.window_s = 6.5;
-  p.pushes = {"1.5,-30,0,0,Spine", "3,0,0,20"};
-  p.body.masses = {"Head=6.5"};
-  p.body.fixed = {"LeftToe"};
-  p.body.hinge_limits = {"LeftLeg=-150,5"};
+  p.physics.terrain = terrainOf("slope:3");
+  p.physics.window_s = 6.5;
+  p.physics.pushes = {pushOf("1.5,-30,0,0,Spine"), pushOf("3,0,0,20")};
+  p.physics.body.masses = {{"Head", 6.5}};
+  p.physics.body.fixed = {"LeftToe"};
+  p.physics.body.hinge_limits = {{"LeftLeg", -150.0, 5.0}};
   p.search.minutes = 7.5;
   p.search.population = 24;
   p.search.no_prior = true;
-  p.search.optimizer = "ga";
+  p.search.optimizer = search::OptimizerKind::kGa;
   p.search.seed = 42;
   p.search.weights.fall = 3.0;
   p.search.weights.energy = 0.01;
@@ -133,13 +146,15 @@ TEST(ProjectFileTest, AFailedSaveKeepsThePreviousFile) {
   test::writeText(file, "previous contents");
   app::Project p;
   p.rig = "walk.bvh";
-  p.terrain = "lava";  // does not validate: nothing is written
+  p.physics.terrain.kind = physics::TerrainSettings::Kind::kSlope;
+  p.physics.terrain.slope_deg = 80.0;  // does not validate: nothing is written
   const Status saved = app::saveProject(p, file);
   ASSERT_FALSE(saved.ok());
-  EXPECT_NE(saved.message().find("terrain: unknown kind"), std::string::npos) << saved.message();
+  EXPECT_NE(saved.message().find("terrain: terrain.slope_deg"), std::string::npos)
+      << saved.message();
   EXPECT_EQ(test::readText(file), "previous contents");
   // A folder that cannot be written: refused with the path, the old file untouched elsewhere.
-  p.terrain = "flat";
+  p.physics.terrain = physics::TerrainSettings();
   EXPECT_FALSE(app::saveProject(p, dir / "no" / "such" / "folder" / "x.sinew.json").ok());
 }
 
@@ -235,19 +250,19 @@ TEST_F(EditorModelTest, UndoAndRedoRestoreTheModelAndItsError) {
 
 TEST_F(EditorModelTest, EverySettingIsOneUndoStepAndADragIsOne) {
   // Several changes between two records (a slider dragged over many frames) are one step.
-  state.evolution.settings.weights.tracking = 1.0;
-  state.evolution.settings.weights.tracking = 2.0;
-  state.evolution.settings.weights.tracking = 3.0;
+  state.evolution.settings.search.weights.tracking = 1.0;
+  state.evolution.settings.search.weights.tracking = 2.0;
+  state.evolution.settings.search.weights.tracking = 3.0;
   editor::recordHistory(state);
   state.view.show_grid = false;
   editor::recordHistory(state);
   state.playback.speed = 0.25;
   editor::recordHistory(state);
-  state.evolution.settings.terrain = "steps:0.05,0.6";
+  state.evolution.settings.physics.terrain = terrainOf("steps:0.05,0.6");
   editor::recordHistory(state);
-  state.evolution.settings.pushes.push_back("1,-40,0,0");
+  state.evolution.settings.physics.pushes.push_back(pushOf("1,-40,0,0"));
   editor::recordHistory(state);
-  state.evolution.settings.optimizer = "ga";
+  state.evolution.settings.search.optimizer = search::OptimizerKind::kGa;
   editor::recordHistory(state);
   // Playback position and play/pause are not settings: no step.
   state.playback.time_s = 1.0;
@@ -262,12 +277,12 @@ TEST_F(EditorModelTest, EverySettingIsOneUndoStepAndADragIsOne) {
   EXPECT_EQ(undone,
             (std::vector<std::string>{"optimizer ga", "pushes", "terrain steps:0.05,0.6",
                                       "speed 0.25x", "grid off", "weight tracking 5 -> 3"}));
-  EXPECT_EQ(state.evolution.settings.weights.tracking, 5.0);
+  EXPECT_EQ(state.evolution.settings.search.weights.tracking, 5.0);
   EXPECT_TRUE(state.view.show_grid);
   EXPECT_EQ(state.playback.speed, 1.0);
-  EXPECT_EQ(state.evolution.settings.terrain, "flat");
-  EXPECT_TRUE(state.evolution.settings.pushes.empty());
-  EXPECT_EQ(state.evolution.settings.optimizer, "cmaes");
+  EXPECT_EQ(app::terrainText(state.evolution.settings.physics.terrain), "flat");
+  EXPECT_TRUE(state.evolution.settings.physics.pushes.empty());
+  EXPECT_EQ(state.evolution.settings.search.optimizer, search::OptimizerKind::kCmaes);
   EXPECT_FALSE(editor::hasUnsavedChanges(state));
 }
 
@@ -277,9 +292,9 @@ TEST_F(EditorModelTest, ASavedProjectReopensAsItWasLeft) {
   std::vector<int> k = state.analysis->joint_k;
   k[static_cast<size_t>(head)] = 2;
   editor::setJointK(state, k);
-  state.evolution.settings.weights.energy = 0.01;
-  state.evolution.settings.terrain = "slope:2";
-  state.evolution.settings.window_s = 6.0;
+  state.evolution.settings.search.weights.energy = 0.01;
+  state.evolution.settings.physics.terrain = terrainOf("slope:2");
+  state.evolution.settings.physics.window_s = 6.0;
   state.view.model_beside = false;
   const double error = state.analysis->total.rot_err_deg_rms;
   const std::filesystem::path file = dir / "mine.sinew.json";
@@ -292,7 +307,7 @@ TEST_F(EditorModelTest, ASavedProjectReopensAsItWasLeft) {
   EXPECT_EQ(editor::captureProject(reopened), editor::captureProject(state));
   EXPECT_EQ(reopened.analysis->joint_k, k);
   EXPECT_DOUBLE_EQ(reopened.analysis->total.rot_err_deg_rms, error);
-  EXPECT_EQ(reopened.evolution.settings.terrain, "slope:2");
+  EXPECT_EQ(app::terrainText(reopened.evolution.settings.physics.terrain), "slope:2");
   EXPECT_FALSE(reopened.view.model_beside);
   EXPECT_FALSE(editor::hasUnsavedChanges(reopened));
 }
@@ -317,24 +332,25 @@ TEST_F(EditorModelTest, ABrokenProjectChangesNothingAndIsNamedInTheLog) {
 
 TEST_F(EditorModelTest, TheSearchUsesTheProjectsPhysics) {
   editor::EvolutionSettings& settings = state.evolution.settings;
-  settings.terrain = "slope:2";
-  settings.pushes = {"0.5,-20,0,0"};
-  settings.body.masses = {"Head=9"};
-  settings.window_s = 2.0;
-  settings.minutes = 0.05;
-  settings.optimizer = "ga";
+  settings.physics.terrain = terrainOf("slope:2");
+  settings.physics.pushes = {pushOf("0.5,-20,0,0")};
+  settings.physics.body.masses = {{"Head", 9.0}};
+  settings.physics.window_s = 2.0;
+  settings.search.minutes = 0.05;
+  settings.search.optimizer = search::OptimizerKind::kGa;
   ASSERT_TRUE(editor::startEvolution(state));
   const search::Problem& problem = state.evolution.session->problem();
   EXPECT_EQ(problem.simulation.world.terrain.kind, physics::TerrainSettings::Kind::kSlope);
   EXPECT_EQ(problem.simulation.world.terrain.slope_deg, 2.0);
   ASSERT_EQ(problem.simulation.pushes.size(), 1u);
   EXPECT_EQ(problem.simulation.pushes[0].impulse_ns.x, -20.0);
-  EXPECT_EQ(state.evolution.session->settings().optimizer, "ga");
+  EXPECT_EQ(state.evolution.session->settings().optimizer, search::OptimizerKind::kGa);
   editor::stopEvolution(state);
   // A bad setting is refused with its field, and nothing starts.
-  settings.terrain = "lava";
+  settings.physics.terrain.slope_deg = 80.0;
   EXPECT_FALSE(editor::startEvolution(state));
-  EXPECT_NE(state.log.lines().back().text.find("terrain: unknown kind 'lava'"), std::string::npos);
+  EXPECT_NE(state.log.lines().back().text.find("terrain: terrain.slope_deg"), std::string::npos)
+      << state.log.lines().back().text;
 }
 
 TEST_F(EditorModelTest, BodyOverridesRebuildTheBodyAndUndo) {
@@ -354,7 +370,8 @@ TEST_F(EditorModelTest, BodyOverridesRebuildTheBodyAndUndo) {
   editor::recordHistory(state);
   editor::setBodyWelded(state, "Head", true);
   editor::recordHistory(state);
-  EXPECT_EQ(state.evolution.settings.body.masses, std::vector<std::string>{"Head=9"});
+  EXPECT_EQ(state.evolution.settings.physics.body.masses,
+            (std::vector<app::MassOverride>{{"Head", 9.0}}));
   plan = editor::bodyPlan(state);
   ASSERT_NE(plan, nullptr) << state.body_cache.error;
   EXPECT_NEAR(plan->total_mass_kg, total - head_kg + 9.0, 1e-9);
@@ -414,9 +431,9 @@ TEST_F(EditorModelTest, ExportWritesTheModelThatReimportsAndReloads) {
 
 TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
   editor::EvolutionSettings& settings = state.evolution.settings;
-  settings.window_s = 1.0;
-  settings.population = 8;
-  settings.minutes = 1.0;
+  settings.physics.window_s = 1.0;
+  settings.search.population = 8;
+  settings.search.minutes = 1.0;
   ASSERT_TRUE(editor::startEvolution(state));
   for (int i = 0;
        i < 600 && (!state.evolution.snapshot || state.evolution.snapshot->generation < 1); ++i) {
@@ -531,7 +548,7 @@ TEST(EditorStyleTest, TheTiredStyleSlowsTheNormalWalkAndWeightZeroChangesNothing
 
 TEST_F(EditorModelTest, TheRecoveryFileIsTheCurrentProject) {
   test::TempDir dir;
-  state.evolution.settings.seed = 77;
+  state.evolution.settings.search.seed = 77;
   const std::filesystem::path file = dir / "recovery.sinew.json";
   ASSERT_TRUE(editor::writeRecovery(state, file).ok());
   Result<app::Project> recovered = app::loadProject(file);

@@ -116,7 +116,10 @@ TEST(BvhReaderTest, CmuKeepsItsMixedRotationOrders) {
 // point near the ground plane of the first frame, and a plausible size in metres.
 TEST(BvhReaderTest, RealCharactersComeOutUprightInMetres) {
   SINEW_REQUIRE_SHARED_DATA();
-  for (const auto& path : test::sharedFiles("bvh", ".bvh")) {
+  const std::vector<std::filesystem::path> files = test::sharedFiles("bvh", ".bvh");
+  // An empty (or unreadable) folder checks nothing: that is a failure, not a pass.
+  ASSERT_FALSE(files.empty()) << "no .bvh files in " << (test::sharedData() / "bvh");
+  for (const auto& path : files) {
     SCOPED_TRACE(path.filename().string());
     Result<MotionAsset> result = importMotion(path);
     ASSERT_TRUE(result.ok()) << result.message();
@@ -151,12 +154,14 @@ TEST(BvhReaderTest, UserOverridesWinOverDetection) {
 
 // Synthetic large file: 120 joints x 10,000 frames parses (and in linear time).
 TEST(BvhReaderTest, ReadsHundredsOfJointsAndTenThousandFrames) {
-  std::string text = "HIERARCHY\nROOT j0\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition "
-                     "Zposition Zrotation Yrotation Xrotation\n";
+  std::string text =
+      "HIERARCHY\nROOT j0\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition "
+      "Zposition Zrotation Yrotation Xrotation\n";
   constexpr int kJoints = 120;
   constexpr int kFrames = 10000;
   for (int j = 1; j < kJoints; ++j) {
-    text += "JOINT j" + std::to_string(j) + "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
+    text += "JOINT j" + std::to_string(j) +
+            "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
   }
   text += "End Site\n{\nOFFSET 0 1 0\n}\n";
   for (int j = 0; j < kJoints; ++j) text += "}\n";

@@ -151,9 +151,14 @@ TEST(Servo, QuadrupedHoldsItsStandingPoseForTenSeconds) {
   EXPECT_GT(r.min_height, 0.95 * r.start_height);
 }
 
-// Every rig in assets/ and the shared data builds a plan and stands under the servos for 5 s
-// without NaN or a joint speed blow-up.
-TEST(Servo, EveryRigStandsFiveSecondsWithoutBlowingUp) {
+// Every rig in assets/ and the shared data builds a plan and holds its standing pose under the
+// servos for 5 s without NaN or a joint speed blow-up; the bundled biped, quadruped and stepper
+// also stay up (base above 70% of its start). Not asserted, printed: the one-legged hopper has
+// no static balance, and the real captures of the shared data fall today (at 1-1.3 s; the body
+// plan's real-capture work is to fix that).
+TEST(Servo, EveryRigHoldsFiveSecondsWithoutBlowingUpAndTheBundledStandersStand) {
+  const std::vector<std::string> standers = {"biped_walk.bvh", "quadruped_trot.bvh",
+                                             "stepper_step.bvh"};
   std::vector<std::filesystem::path> rigs;
   for (const char* file :
        {"biped_walk.bvh", "quadruped_trot.bvh", "hopper_hop.bvh", "stepper_step.bvh"})
@@ -187,6 +192,13 @@ TEST(Servo, EveryRigStandsFiveSecondsWithoutBlowingUp) {
     std::printf("  max joint speed %.1f rad/s\n", r.max_joint_speed);
     EXPECT_TRUE(r.finite) << path;
     EXPECT_LT(r.max_joint_speed, kBlowUpRadPerS) << path;
+    const bool stander = path.parent_path().filename() == "assets" &&
+                         std::find(standers.begin(), standers.end(), path.filename().string()) !=
+                             standers.end();
+    if (stander) {
+      EXPECT_TRUE(up) << path << ": the base fell from " << r.start_height << " m to "
+                      << r.min_height << " m at " << r.fall_time << " s";
+    }
   }
 }
 

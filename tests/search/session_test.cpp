@@ -106,14 +106,14 @@ TEST(SearchSession, StopsWithinAHundredMillisecondsAndPausingChangesNothing) {
   straight->start();
   straight->wait();
   const auto expected = straight->snapshot();
-  EXPECT_EQ(expected->state, "finished");
+  EXPECT_EQ(expected->state, SessionState::kFinished);
   // Paused twice mid-generation, then resumed.
   auto paused = Session::create(makeProblem(biped, 1.5), small(2, 3)).value();
   paused->start();
   for (int i = 0; i < 2; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(150));
     paused->pause();
-    EXPECT_EQ(paused->snapshot()->state, "paused");
+    EXPECT_EQ(paused->snapshot()->state, SessionState::kPaused);
     paused->resume();
   }
   paused->wait();
@@ -130,19 +130,19 @@ TEST(SearchSession, StopsWithinAHundredMillisecondsAndPausingChangesNothing) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::printf("stop() returned after %.2f ms with 2 evaluations of 20 s in flight\n", ms);
   EXPECT_LT(ms, 100.0);
-  EXPECT_EQ(long_run->snapshot()->state, "stopped");
+  EXPECT_EQ(long_run->snapshot()->state, SessionState::kStopped);
 }
 
 TEST(SearchSession, CheckpointResumeEqualsAnUninterruptedRun) {
   const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  for (const char* optimizer : {"cmaes", "ga"}) {
+  for (const OptimizerKind kind : {OptimizerKind::kCmaes, OptimizerKind::kGa}) {
+    const char* optimizer = optimizerName(kind);
     EvolveSettings settings = small(2, 4);
-    settings.optimizer = optimizer;
+    settings.optimizer = kind;
     auto whole = Session::create(makeProblem(biped, 1.0), settings).value();
     while (whole->runGeneration()) {
     }
-    EvolveSettings half = settings;
     auto first = Session::create(makeProblem(biped, 1.0), settings).value();
     ASSERT_TRUE(first->runGeneration());
     ASSERT_TRUE(first->runGeneration());

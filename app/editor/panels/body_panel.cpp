@@ -15,14 +15,17 @@ namespace {
 
 constexpr double kDeg = 57.29577951308232;
 
-bool hasOverride(const std::vector<std::string>& list, const std::string& link) {
-  return std::any_of(list.begin(), list.end(), [&](const std::string& entry) {
-    return entry == link || entry.rfind(link + "=", 0) == 0;
-  });
+bool hasMassOverride(const app::BodyOverrides& body, const std::string& link) {
+  return std::any_of(body.masses.begin(), body.masses.end(),
+                     [&](const app::MassOverride& m) { return m.link == link; });
+}
+
+bool isWelded(const app::BodyOverrides& body, const std::string& link) {
+  return std::find(body.fixed.begin(), body.fixed.end(), link) != body.fixed.end();
 }
 
 void drawLinks(EditorState& state, const physics::BodyPlan& plan) {
-  const app::BodyOverrides& body = state.evolution.settings.body;
+  const app::BodyOverrides& body = state.evolution.settings.physics.body;
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                                 ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingFixedFit;
   const float height = std::max(ImGui::GetContentRegionAvail().y - 70.0f, 80.0f);
@@ -46,7 +49,7 @@ void drawLinks(EditorState& state, const physics::BodyPlan& plan) {
     ImGui::SetNextItemWidth(58.0f);
     if (ImGui::DragFloat("##kg", &kg, 0.05f, 0.05f, 500.0f, "%.2f"))
       mass = {link.name, std::max(kg, 0.05f)};
-    if (hasOverride(body.masses, link.name)) {
+    if (hasMassOverride(body, link.name)) {
       ImGui::SameLine();
       if (ImGui::SmallButton("x")) reset = link.name;
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("Back to the rule's mass");
@@ -56,7 +59,7 @@ void drawLinks(EditorState& state, const physics::BodyPlan& plan) {
       ImGui::TextDisabled("base");
     } else {
       bool welded = link.type == physics::JointType::kFixed;
-      const bool overridden = hasOverride(body.fixed, link.name);
+      const bool overridden = isWelded(body, link.name);
       ImGui::BeginDisabled(welded && !overridden);  // fixed by the rules: it does not move
       if (ImGui::Checkbox("##weld", &welded)) (welded ? weld : free) = link.name;
       ImGui::EndDisabled();
@@ -85,21 +88,47 @@ void drawLinks(EditorState& state, const physics::BodyPlan& plan) {
   if (!free.empty()) setBodyWelded(state, free, false);
 }
 
+// The terrain and the pushes are typed settings shown as their text; an edit is read (and
+// applied) when Enter is pressed, and a line that does not read is named in the log.
 void drawTerrainAndPushes(EditorState& state) {
-  EvolutionSettings& settings = state.evolution.settings;
+  app::PhysicsSettings& physics = state.evolution.settings.physics;
+  constexpr ImGuiInputTextFlags kOnEnter = ImGuiInputTextFlags_EnterReturnsTrue;
   ImGui::SetNextItemWidth(160.0f);
-  ImGui::InputText("terrain", &settings.terrain);
+  std::string terrain = app::terrainText(physics.terrain);
+  if (ImGui::InputText("terrain", &terrain, kOnEnter)) {
+    Result<physics::TerrainSettings> read = app::parseTerrain(terrain, "terrain");
+    if (read.ok()) {
+      physics.terrain = read.value();
+    } else {
+      state.log.error(read.message());
+    }
+  }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("flat | slope:DEG | steps:HEIGHT,DEPTH | rough:AMPLITUDE,SEED");
+    ImGui::SetTooltip(
+        "flat | slope:DEG | steps:HEIGHT,DEPTH | rough:AMPLITUDE,SEED (Enter applies)");
   ImGui::SameLine();
-  if (ImGui::SmallButton("add a push")) settings.pushes.emplace_back("1.0,-40,0,0");
-  std::vector<std::string>& pushes = settings.pushes;
+  if (ImGui::SmallButton("add a push")) {
+    physics::Push push;
+    push.time_s = 1.0;
+    push.impulse_ns = glm::dvec3(-40.0, 0.0, 0.0);
+    physics.pushes.push_back(push);
+  }
+  std::vector<physics::Push>& pushes = physics.pushes;
   for (size_t i = 0; i < pushes.size(); ++i) {
     ImGui::PushID(static_cast<int>(i) + 1000);
     ImGui::SetNextItemWidth(160.0f);
-    ImGui::InputText("push", &pushes[i]);
+    std::string text = app::pushText(pushes[i]);
+    if (ImGui::InputText("push", &text, kOnEnter)) {
+      Result<physics::Push> read = app::parsePush(text, "push");
+      if (read.ok()) {
+        pushes[i] = read.value();
+      } else {
+        state.log.error(read.message());
+      }
+    }
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("TIME,X,Y,Z[,LINK]: seconds, N s (Y up); the base when no link");
+      ImGui::SetTooltip(
+          "TIME,X,Y,Z[,LINK]: seconds, N s (Y up); the base when no link (Enter applies)");
     ImGui::SameLine();
     const bool remove = ImGui::SmallButton("remove");
     ImGui::PopID();
@@ -118,13 +147,13 @@ void drawBodyPanel(EditorState& state) {
     return;
   }
   const physics::BodyPlan* plan = bodyPlan(state);
-  const std::string run = state.evolution.snapshot ? state.evolution.snapshot->state : "";
-  ImGui::BeginDisabled(run == "running" || run == "paused");  // a running search keeps its body
+  // A running search keeps its body.
+  ImGui::BeginDisabled(state.evolution.snapshot &&
+                       search::underWay(state.evolution.snapshot->state));
   if (plan == nullptr) {
     ImGui::TextWrapped("No body: %s", state.body_cache.error.c_str());
-    if (!state.evolution.settings.body.masses.empty() ||
-        !state.evolution.settings.body.fixed.empty()) {
-      if (ImGui::Button("Clear the overrides")) state.evolution.settings.body = {};
+    if (!state.evolution.settings.physics.body.empty()) {
+      if (ImGui::Button("Clear the overrides")) state.evolution.settings.physics.body = {};
     }
   } else {
     ImGui::Text("%.1f kg, %zu links, %d degrees of freedom", plan->total_mass_kg,

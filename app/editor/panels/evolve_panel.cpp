@@ -84,8 +84,9 @@ void plotHistory(const search::Snapshot& snap) {
 void drawEvolvePanel(EditorState& state) {
   ImGui::Begin("Evolve", nullptr, ImGuiWindowFlags_NoCollapse);
   EvolutionState& evolution = state.evolution;
-  const std::string run_state = evolution.snapshot ? evolution.snapshot->state : "";
-  const bool running = run_state == "running" || run_state == "paused";
+  const search::SessionState run_state =
+      evolution.snapshot ? evolution.snapshot->state : search::SessionState::kReady;
+  const bool running = search::underWay(run_state);
   if (!state.analysis) {
     ImGui::TextDisabled("Open a clip that analyses to evolve its physical motion.");
     ImGui::End();
@@ -96,47 +97,49 @@ void drawEvolvePanel(EditorState& state) {
     // The settings cannot change under a running search: one line says what they are.
     const search::EvolveSettings& used = evolution.session->settings();
     ImGui::TextDisabled("%s, population %d, seed %llu, %.1f min, %.0f s window%s",
-                        used.optimizer == "ga" ? "GA" : "CMA-ES", evolution.session->population(),
-                        static_cast<unsigned long long>(used.seed), used.minutes,
-                        evolution.session->problem().simulation.seconds,
-                        evolution.settings.no_prior ? ", no prior" : "");
+                        used.optimizer == search::OptimizerKind::kGa ? "GA" : "CMA-ES",
+                        evolution.session->population(), static_cast<unsigned long long>(used.seed),
+                        used.minutes, evolution.session->problem().simulation.seconds,
+                        evolution.started.search.no_prior ? ", no prior" : "");
   } else {
     ImGui::SetNextItemWidth(120.0f);
-    float minutes = static_cast<float>(evolution.settings.minutes);
+    float minutes = static_cast<float>(evolution.settings.search.minutes);
     if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
-      evolution.settings.minutes = minutes;
+      evolution.settings.search.minutes = minutes;
     ImGui::SameLine();
     ImGui::SetNextItemWidth(100.0f);
-    float window = static_cast<float>(evolution.settings.window_s);
+    float window = static_cast<float>(evolution.settings.physics.window_s);
     if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
-      evolution.settings.window_s = window;
-    ImGui::Checkbox("no prior (baseline)", &evolution.settings.no_prior);
+      evolution.settings.physics.window_s = window;
+    ImGui::Checkbox("no prior (baseline)", &evolution.settings.search.no_prior);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(90.0f);
-    const bool ga = evolution.settings.optimizer == "ga";
+    search::OptimizerKind& optimizer = evolution.settings.search.optimizer;
+    const bool ga = optimizer == search::OptimizerKind::kGa;
     if (ImGui::BeginCombo("optimiser", ga ? "GA" : "CMA-ES")) {
-      if (ImGui::Selectable("CMA-ES", !ga)) evolution.settings.optimizer = "cmaes";
-      if (ImGui::Selectable("GA (baseline)", ga)) evolution.settings.optimizer = "ga";
+      if (ImGui::Selectable("CMA-ES", !ga)) optimizer = search::OptimizerKind::kCmaes;
+      if (ImGui::Selectable("GA (baseline)", ga)) optimizer = search::OptimizerKind::kGa;
       ImGui::EndCombo();
     }
     ImGui::SetNextItemWidth(90.0f);
-    ImGui::InputInt("population", &evolution.settings.population, 1, 4);
-    evolution.settings.population = std::clamp(evolution.settings.population, 0, 1000);
+    ImGui::InputInt("population", &evolution.settings.search.population, 1, 4);
+    evolution.settings.search.population =
+        std::clamp(evolution.settings.search.population, 0, 1000);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(90.0f);
-    int seed = static_cast<int>(evolution.settings.seed);
+    int seed = static_cast<int>(evolution.settings.search.seed);
     if (ImGui::InputInt("seed", &seed))
-      evolution.settings.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+      evolution.settings.search.seed = static_cast<std::uint64_t>(std::max(seed, 0));
   }
   if (ImGui::TreeNode("fitness weights")) {
     // Live: a running search takes them from its next generation.
     bool changed = false;
     for (int k = 0; k < search::kFitnessTermCount; ++k) {
-      float w = static_cast<float>(search::fitnessWeight(evolution.settings.weights, k));
+      float w = static_cast<float>(search::fitnessWeight(evolution.settings.search.weights, k));
       ImGui::SetNextItemWidth(120.0f);
       if (ImGui::DragFloat(search::fitnessTermName(k), &w, 0.01f, 0.0f, 100.0f, "%.3f")) {
-        search::fitnessWeight(evolution.settings.weights, k) = std::max(w, 0.0f);
+        search::fitnessWeight(evolution.settings.search.weights, k) = std::max(w, 0.0f);
         changed = true;
       }
       if (k % 2 == 0 && k + 1 < search::kFitnessTermCount) ImGui::SameLine();
@@ -148,7 +151,7 @@ void drawEvolvePanel(EditorState& state) {
   if (!running) {
     if (ImGui::Button(evolution.snapshot ? "Start again" : "Start")) startEvolution(state);
   } else {
-    if (run_state == "paused") {
+    if (run_state == search::SessionState::kPaused) {
       if (ImGui::Button("Resume")) resumeEvolution(state);
     } else if (ImGui::Button("Pause")) {
       pauseEvolution(state);
@@ -162,8 +165,8 @@ void drawEvolvePanel(EditorState& state) {
   if (evolution.snapshot) {
     const search::Snapshot& snap = *evolution.snapshot;
     const double wall = snap.history.empty() ? 0.0 : snap.history.back().wall_s;
-    ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)", run_state.c_str(),
-                snap.generation, snap.evaluations, wall,
+    ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)",
+                search::sessionStateName(run_state), snap.generation, snap.evaluations, wall,
                 wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
     if (running && evolution.session) {
       // The budget spent (minutes of wall time since the start, as the session counts them).

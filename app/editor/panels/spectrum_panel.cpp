@@ -106,10 +106,7 @@ void drawCurves(const EditorState& state, int joint) {
   const int k = analysis.joint_k[static_cast<size_t>(joint)];
   const double dt = spectrum.signals.frame_time;
   const double start = spectrum.window.start_s;
-  const double span = spectrum.period_s * std::max(spectrum.window.strides, 1);
-  const int first = std::max(static_cast<int>(std::floor(start / dt)), 0);
-  const int last =
-      std::min(static_cast<int>(std::ceil((start + span) / dt)), spectrum.signals.frame_count - 1);
+  const auto [first, last] = spectral::windowFrameRange(spectrum);  // the frames the model fits
   if (last <= first) return;
   struct Curve {
     std::vector<ImVec2> original, model;

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "sinew/motion/limits.h"
+#include "sinew/core/assert.h"
 
 namespace sinew::motion {
 
@@ -64,6 +65,9 @@ Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time) {
 
 void worldTransforms(const Skeleton& skeleton, const Clip& clip, int frame,
                      std::span<glm::dmat4> out) {
+  SINEW_ASSERT(out.size() == static_cast<size_t>(skeleton.jointCount()),
+               "worldTransforms: one matrix per joint");
+  SINEW_ASSERT(frame >= 0 && frame < clip.frame_count, "worldTransforms: a frame of the clip");
   for (int j = 0; j < skeleton.jointCount(); ++j) {
     glm::dmat4 local = glm::translate(glm::dmat4(1.0), clip.translation(frame, j)) *
                        glm::mat4_cast(clip.rotation(frame, j));

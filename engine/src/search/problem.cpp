@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sinew/core/assert.h"
 #include "sinew/physics/tracking.h"
 #include "sinew/search/random.h"
 
@@ -157,6 +158,7 @@ std::vector<double> GenomeLayout::startPoint(std::uint64_t seed) const {
 }
 
 spectral::TargetMotion GenomeLayout::decodeTarget(std::span<const double> x) const {
+  SINEW_ASSERT(x.size() == lo_.size(), "decodeTarget: a point of this layout's size");
   spectral::TargetMotion target = seed_;
   for (size_t i = 0; i < genes_.size(); ++i) {
     const Gene& g = genes_[i];
@@ -182,6 +184,7 @@ spectral::TargetMotion GenomeLayout::decodeTarget(std::span<const double> x) con
 }
 
 physics::BalanceGains GenomeLayout::decodeGains(std::span<const double> x) const {
+  SINEW_ASSERT(x.size() == lo_.size(), "decodeGains: a point of this layout's size");
   physics::BalanceGains gains;
   for (size_t i = 0; i < genes_.size(); ++i)
     if (genes_[i].kind == Kind::kGain) *gainField(gains, genes_[i].gain) = value(i, x[i]);

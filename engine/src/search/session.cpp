@@ -61,9 +61,33 @@ int hardwareThreads() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+const char* optimizerName(OptimizerKind kind) {
+  return kind == OptimizerKind::kGa ? "ga" : "cmaes";
+}
+
+Result<OptimizerKind> optimizerFromName(const std::string& name) {
+  if (name == "cmaes") return OptimizerKind::kCmaes;
+  if (name == "ga") return OptimizerKind::kGa;
+  return Status::error("expected \"cmaes\" or \"ga\", got \"" + name + "\"");
+}
+
+const char* sessionStateName(SessionState state) {
+  switch (state) {
+    case SessionState::kReady:
+      return "ready";
+    case SessionState::kRunning:
+      return "running";
+    case SessionState::kPaused:
+      return "paused";
+    case SessionState::kStopped:
+      return "stopped";
+    case SessionState::kFinished:
+      return "finished";
+  }
+  return "ready";
+}
+
 Status EvolveSettings::validate() const {
-  if (optimizer != "cmaes" && optimizer != "ga")
-    return Status::error("optimizer must be cmaes or ga, not '" + optimizer + "'");
   if (population < 0 || population > kMaxPopulation)
     return Status::error("population must be 0 (the optimiser's default) to 100000");
   if (generations < 0) return Status::error("generations must be >= 0");
@@ -90,7 +114,7 @@ Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSe
   std::unique_ptr<Session> session(new Session(std::move(problem), settings));
   const int n = session->problem_.layout.size();
   const std::vector<double> start = session->problem_.layout.startPoint(settings.seed);
-  if (settings.optimizer == "cmaes") {
+  if (settings.optimizer == OptimizerKind::kCmaes) {
     CmaesSettings c;
     c.population = settings.population;
     c.initial_sigma = settings.initial_sigma;
@@ -111,7 +135,7 @@ Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSe
     if (!made.ok()) return made.status();
     session->optimizer_ = std::move(made).value();
   }
-  session->publish("ready");
+  session->publish(SessionState::kReady);
   return session;
 }
 
@@ -125,7 +149,9 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
                            std::to_string(kSessionVersion));
     const nlohmann::json& s = checkpoint.at("settings");
     EvolveSettings settings;
-    settings.optimizer = s.at("optimizer").get<std::string>();
+    Result<OptimizerKind> kind = optimizerFromName(s.at("optimizer").get<std::string>());
+    if (!kind.ok()) return Status::error("checkpoint: settings.optimizer: " + kind.message());
+    settings.optimizer = kind.value();
     settings.population = s.at("population").get<int>();
     settings.generations = s.at("generations").get<int>();
     settings.minutes = s.at("minutes").get<double>();
@@ -178,7 +204,7 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
       session->best_terms_ = terms.value();
     }
     session->wall_offset_s_ = checkpoint.at("wall_s").get<double>();
-    session->publish("ready");
+    session->publish(SessionState::kReady);
     return session;
   } catch (const nlohmann::json::exception& e) {
     return Status::error(std::string("checkpoint: ") + e.what());
@@ -204,7 +230,7 @@ nlohmann::json Session::checkpoint() const {
   return {{"format", kSessionFormat},
           {"version", kSessionVersion},
           {"settings",
-           {{"optimizer", settings_.optimizer},
+           {{"optimizer", optimizerName(settings_.optimizer)},
             {"population", settings_.population},
             {"generations", settings_.generations},
             {"minutes", settings_.minutes},
@@ -330,14 +356,14 @@ bool Session::runGeneration() {
       if (settings_.record_population)
         snap->population_motions.push_back(std::move(e.report.motion));
     }
-    snap->state = running_ ? "running" : "ready";
+    snap->state = running_ ? SessionState::kRunning : SessionState::kReady;
     snap->failure = failureLocked();
     snapshot_ = std::move(snap);
   }
   return true;
 }
 
-void Session::publish(const std::string& state) {
+void Session::publish(SessionState state) {
   std::lock_guard<std::mutex> lock(mutex_);
   auto snap = snapshot_ ? std::make_shared<Snapshot>(*snapshot_) : std::make_shared<Snapshot>();
   if (!snapshot_) {
@@ -400,14 +426,14 @@ void Session::start() {
   cancel_ = false;
   worker_ = std::thread([this] {
     lowerThisThreadsPriority(settings_.nice);  // the evaluation threads it starts inherit it
-    publish("running");
+    publish(SessionState::kRunning);
     workerLoop();
     bool stopped = false;
     {
       std::lock_guard<std::mutex> guard(mutex_);
       stopped = stopping_;
     }
-    publish(stopped ? "stopped" : "finished");
+    publish(stopped ? SessionState::kStopped : SessionState::kFinished);
   });
 }
 
@@ -418,7 +444,7 @@ void Session::pause() {
     paused_ = true;
     cancel_ = true;
   }
-  publish("paused");
+  publish(SessionState::kPaused);
 }
 
 void Session::resume() {
@@ -429,7 +455,7 @@ void Session::resume() {
     cancel_ = false;
   }
   wake_.notify_all();
-  publish("running");
+  publish(SessionState::kRunning);
 }
 
 void Session::stop() {

@@ -44,10 +44,6 @@ std::pair<int, int> frameRange(const MotionSignals& signals, const AnalysisWindo
   return {first, std::max(first, last)};
 }
 
-std::pair<int, int> windowRange(const MotionSpectrum& spectrum) {
-  return frameRange(spectrum.signals, spectrum.window, spectrum.period_s);
-}
-
 motion::Clip clipFrames(const motion::Clip& clip, int first, int last) {
   motion::Clip out;
   out.name = clip.name;
@@ -557,8 +553,12 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   return spectrum;
 }
 
+std::pair<int, int> windowFrameRange(const MotionSpectrum& spectrum) {
+  return frameRange(spectrum.signals, spectrum.window, spectrum.period_s);
+}
+
 motion::Clip windowFrames(const motion::Clip& clip, const MotionSpectrum& spectrum) {
-  const auto [first, last] = windowRange(spectrum);
+  const auto [first, last] = windowFrameRange(spectrum);
   return clipFrames(clip, first, last);
 }
 
@@ -575,7 +575,7 @@ motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum&
           {h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)});
     }
   }
-  const auto [first, last] = windowRange(spectrum);
+  const auto [first, last] = windowFrameRange(spectrum);
   return evaluateModel(skeleton, signals, first, last, spectrum.window.start_s, spectrum.omega0,
                        channels);
 }

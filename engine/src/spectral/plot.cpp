@@ -262,13 +262,9 @@ Result<PlotData> preparePlot(const motion::Skeleton& skeleton, const motion::Cli
     }
   }
 
-  // The window's frames, as windowFrames() takes them: those whose time lies in
-  // [start, start + strides x period).
+  // The window's frames, as windowFrames() takes them.
   const double dt = signals.frame_time;
-  const double end_s = spectrum.window.start_s + spectrum.window.strides * spectrum.period_s;
-  const int first = static_cast<int>(std::ceil(spectrum.window.start_s / dt - 1e-9));
-  const int last = std::max(
-      first, std::min(static_cast<int>(std::ceil(end_s / dt - 1e-9)) - 1, signals.frame_count - 1));
+  const auto [first, last] = windowFrameRange(spectrum);
 
   PlotData plot;
   plot.clip_name = clip.name;

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "sinew/spectral/limits.h"
+#include "sinew/core/assert.h"
 
 namespace sinew::spectral {
 namespace {
@@ -90,6 +91,9 @@ Status TargetMotion::validate(const motion::Skeleton& skeleton) const {
 void TargetMotion::pose(double t, std::span<glm::dquat> rotations,
                         std::span<glm::dvec3> translations) const {
   const int joints = jointCount();
+  SINEW_ASSERT(rotations.size() == static_cast<size_t>(joints) &&
+                   translations.size() == static_cast<size_t>(joints),
+               "TargetMotion::pose: spans of jointCount() entries");
   std::vector<glm::dvec3> vectors(joints, glm::dvec3(0.0));
   std::vector<bool> rotates(joints, false);
   for (int j = 0; j < joints; ++j) translations[j] = base_translations[j];
@@ -113,6 +117,7 @@ void TargetMotion::pose(double t, std::span<glm::dquat> rotations,
 }
 
 motion::Clip TargetMotion::sample(double fps, int strides) const {
+  SINEW_ASSERT(fps > 0.0 && strides >= 1, "TargetMotion::sample: fps > 0, strides >= 1");
   const double length = strides * period();
   const int intervals = std::max(1, static_cast<int>(std::lround(length * fps)));
   // Frames exactly at the chosen rate; the motion's tempo is stretched (by at most half a frame

@@ -34,13 +34,32 @@ namespace sinew::search {
 
 inline constexpr int kMaxPopulation = 100000;
 
+// Which optimiser a search runs. Its name ("cmaes", "ga") is what flags, projects and checkpoints
+// write.
+enum class OptimizerKind : std::uint8_t { kCmaes, kGa };
+const char* optimizerName(OptimizerKind kind);  // "cmaes", "ga"
+// The kind called `name`; the message lists the names.
+Result<OptimizerKind> optimizerFromName(const std::string& name);
+
+// Where a session is. Its name ("ready", "running", ...) is what logs print.
+enum class SessionState : std::uint8_t { kReady, kRunning, kPaused, kStopped, kFinished };
+const char* sessionStateName(SessionState state);
+// Running or paused: a search is under way (it may be resumed).
+inline bool underWay(SessionState state) {
+  return state == SessionState::kRunning || state == SessionState::kPaused;
+}
+// Stopped or finished: the worker has ended.
+inline bool ended(SessionState state) {
+  return state == SessionState::kStopped || state == SessionState::kFinished;
+}
+
 struct EvolveSettings {
-  std::string optimizer = "cmaes";  // "cmaes" or "ga"
-  int population = 0;               // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32),
-                                    // at most kMaxPopulation
-  int generations = 40;             // budget in generations, >= 0 (0: only the time budget)
-  double minutes = 0.0;             // wall-clock budget, minutes, >= 0 (0: none)
-  int threads = 0;                  // evaluation workers, >= 0 (0: every core)
+  OptimizerKind optimizer = OptimizerKind::kCmaes;
+  int population = 0;    // 0: the optimiser's default (CMA-ES 4 + 3 ln n; GA 32),
+                         // at most kMaxPopulation
+  int generations = 40;  // budget in generations, >= 0 (0: only the time budget)
+  double minutes = 0.0;  // wall-clock budget, minutes, >= 0 (0: none)
+  int threads = 0;       // evaluation workers, >= 0 (0: every core)
   std::uint64_t seed = 1;
   double initial_sigma = 0.02;     // CMA-ES step size (GA: mutation scale), normalised units,
                                    // (0, 1]: small, the prior walks already
@@ -80,7 +99,7 @@ struct Snapshot {
   std::vector<std::vector<double>> population;  // the last finished generation's points
   std::vector<FitnessTerms> population_terms;
   std::vector<motion::Clip> population_motions;  // when record_population
-  std::string state;    // "ready", "running", "paused", "stopped", "finished"
+  SessionState state = SessionState::kReady;
   std::string failure;  // why the search stopped without a result (every evaluation of its first
                         // kGenerationsWithoutScore generations diverged), or empty
 };
@@ -116,7 +135,7 @@ class Session {
  private:
   Session(Problem problem, const EvolveSettings& settings);
   void workerLoop();
-  void publish(const std::string& state);
+  void publish(SessionState state);
   // With mutex_ held: whether kGenerationsWithoutScore generations scored nothing, and why.
   bool nothingFinite() const;
   std::string failureLocked() const;

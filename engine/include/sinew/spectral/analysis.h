@@ -85,6 +85,10 @@ motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum&
 
 // The window's original frames, to compare with reconstruct().
 motion::Clip windowFrames(const motion::Clip& clip, const MotionSpectrum& spectrum);
+// The frames the model describes, first..last inclusive: those whose time lies in
+// [window.start_s, window.start_s + strides x period_s), within the clip. windowFrames(),
+// reconstruct(), the plots and the editor's curves all take this range.
+std::pair<int, int> windowFrameRange(const MotionSpectrum& spectrum);
 
 // Per joint and total error of `model` against `original` (same frames, same skeleton).
 std::vector<JointError> measureError(const motion::Skeleton& skeleton,
