@@ -124,7 +124,7 @@ TEST(BodyPlan, BipedFromAssetHasHumanMassesHingedKneesAndBoxFeet) {
       ++feet;
       EXPECT_EQ(l.shape.type, ShapeType::kBox) << l.name;
     }
-    if (l.segment == spectral::Segment::kShank) {
+    if (l.segment == motion::Segment::kShank) {
       ++knees;
       EXPECT_EQ(l.type, JointType::kHinge) << l.name;
       EXPECT_LT(l.hinge_lower, l.hinge_upper);

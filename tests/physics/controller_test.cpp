@@ -108,7 +108,7 @@ TEST(PdController, GainsAreCappedByEffectiveInertia) {
   for (size_t li = 1; li < plan.links.size(); ++li) {
     const size_t i = static_cast<size_t>(offsets[li]);
     if (plan.links[li].foot) foot_kp = std::max(foot_kp, c.gains(0)[i].kp);
-    if (plan.links[li].segment == spectral::Segment::kThigh)
+    if (plan.links[li].segment == motion::Segment::kThigh)
       hip_kp = std::max(hip_kp, c.gains(0)[i].kp);
   }
   EXPECT_LT(foot_kp, hip_kp);
