@@ -1,4 +1,7 @@
 #include <iostream>
+#include <set>
+
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 
@@ -11,6 +14,9 @@ void ImportFlags::addTo(CLI::App& command) {
       ->check(CLI::IsMember({"Y", "Z", "y", "z"}));
   command.add_option("--fps", fps, "Frame rate to resample to (default: the file's own; for glTF the keys' median spacing)")
       ->check(CLI::Range(0.001, 1000.0));
+  command.add_flag("--keep-glitches", keep_glitches,
+                   "Keep rotation glitches (a joint flipping away for a few frames) instead of "
+                   "repairing them by interpolation; they are reported either way");
 }
 
 Result<motion::ImportOptions> ImportFlags::options() const {
@@ -24,6 +30,7 @@ Result<motion::ImportOptions> ImportFlags::options() const {
     if (!options.up) return Status::error("--up: expected Y or Z, got '" + up + "'");
   }
   if (fps > 0.0) options.fps = fps;
+  options.repair_glitches = !keep_glitches;
   return options;
 }
 
@@ -41,6 +48,33 @@ Result<int> selectClip(const motion::MotionAsset& asset, const std::string& name
   }
   return Status::error(asset.path.string() + ": no animation named '" + name +
                        "'; the file has: " + names);
+}
+
+std::string glitchSummary(const motion::MotionAsset& asset, int clip) {
+  if (clip < 0 || clip >= static_cast<int>(asset.glitches.size()) || asset.glitches[clip].empty()) {
+    return "none";
+  }
+  const std::vector<motion::Glitch>& found = asset.glitches[clip];
+  std::set<int> joints;
+  for (const motion::Glitch& glitch : found) joints.insert(glitch.joint);
+  std::string names;
+  for (int joint : joints) names += (names.empty() ? "" : ", ") + asset.skeleton.names[joint];
+  return std::to_string(found.size()) + " in " + names +
+         (asset.glitches_repaired ? ", repaired by interpolation (--keep-glitches keeps them)"
+                                  : ", kept (--keep-glitches)");
+}
+
+nlohmann::json glitchJson(const motion::MotionAsset& asset, int clip) {
+  nlohmann::json list = nlohmann::json::array();
+  if (clip < 0 || clip >= static_cast<int>(asset.glitches.size())) return list;
+  for (const motion::Glitch& glitch : asset.glitches[clip]) {
+    list.push_back({{"joint", asset.skeleton.names[glitch.joint]},
+                    {"first_frame", glitch.first_frame},
+                    {"frames", glitch.frame_count},
+                    {"size_deg", glitch.size_deg},
+                    {"repaired", asset.glitches_repaired}});
+  }
+  return list;
 }
 
 int fail(const std::string& message) {

@@ -89,6 +89,7 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
     info["fps"] = clip.fps();
     info["frame_time_s"] = clip.frame_time;
     info["duration_s"] = clip.duration();
+    info["glitches"] = glitchJson(asset, selected);
   }
   return info;
 }
@@ -113,6 +114,7 @@ void printText(const motion::MotionAsset& asset, int selected, std::ostream& out
   }
   out << "  units      " << motion::unitName(asset.detection.frame.unit) << ", up "
       << motion::upAxisName(asset.detection.frame.up) << "  (" << asset.detection.reason << ")\n";
+  if (selected >= 0) out << "  glitches   " << glitchSummary(asset, selected) << '\n';
   if (asset.clips.size() > 1 || asset.gltf) {
     out << "  animations " << asset.clips.size() << '\n';
     for (const motion::Clip& clip : asset.clips) {
