@@ -30,7 +30,8 @@ struct Swing {
 Swing swing(int frames = 90, double fps = 30.0) {
   Swing s;
   s.skeleton.addJoint("Foot", kNoParent, glm::dvec3(0.0));
-  s.skeleton.channels[0].types = {ChannelType::kZrotation, ChannelType::kXrotation, ChannelType::kYrotation};
+  s.skeleton.channels[0].types = {ChannelType::kZrotation, ChannelType::kXrotation,
+                                  ChannelType::kYrotation};
   s.clip = restClip(s.skeleton, frames, 1.0 / fps);
   for (int f = 0; f < frames; ++f) {
     const double angle = glm::radians(40.0) * std::sin(2.0 * std::numbers::pi * f / fps);
@@ -149,13 +150,14 @@ TEST(Glitch, CleanRealClipsReportNoneAndComeOutBitUnchanged) {
     ASSERT_EQ(raw.glitches.size(), raw.clips.size());
     for (size_t c = 0; c < raw.clips.size(); ++c) {
       // Real glitches: CMU 131_01's right thumb turns 180 degrees for 6 to 14 frames (0.05 to
-      // 0.12 s) four times, each as its X angle passes 90 degrees (the conversion's Euler angles take the
-      // other branch: at frame 809 X goes +78 -> -88 ... -78 -> +78, Z and Y jumping by about
-      // 110 and 180 degrees).
+      // 0.12 s) four times, each as its X angle passes 90 degrees (the conversion's Euler angles
+      // take the other branch: at frame 809 X goes +78 -> -88 ... -78 -> +78, Z and Y jumping by
+      // about 110 and 180 degrees).
       const bool thumb = kept[a].name == "cmu_131_01.bvh";
       for (const Glitch& g : raw.glitches[c]) {
         if (thumb && raw.skeleton.names[g.joint] == "RThumb" && g.size_deg > 170.0) {
-          std::printf("  %s: %s (a real glitch)\n", kept[a].name.c_str(), describeGlitch(raw.skeleton, g).c_str());
+          std::printf("  %s: %s (a real glitch)\n", kept[a].name.c_str(),
+                      describeGlitch(raw.skeleton, g).c_str());
           continue;
         }
         ADD_FAILURE() << kept[a].name << " '" << raw.clips[c].name
@@ -178,7 +180,8 @@ TEST(Glitch, CleanRealClipsReportNoneAndComeOutBitUnchanged) {
 }
 
 TEST(Glitch, BundledClipsReportNone) {
-  for (const char* name : {"biped_walk.bvh", "hopper_hop.bvh", "quadruped_trot.bvh", "stepper_step.bvh"}) {
+  for (const char* name :
+       {"biped_walk.bvh", "hopper_hop.bvh", "quadruped_trot.bvh", "stepper_step.bvh"}) {
     Result<MotionAsset> asset = importMotion(test::sourceDir() / "assets" / name);
     ASSERT_TRUE(asset.ok()) << asset.message();
     ASSERT_EQ(asset.value().glitches.size(), 1u);
@@ -231,7 +234,8 @@ TEST(Glitch, InjectedFlipsInRealClipsAreFoundAndRepaired) {
       const int window_frames = static_cast<int>(s.window.strides * s.period_s / clean.frame_time);
       for (int count = 1; count <= 3; ++count) {
         Clip glitched = clean;
-        const int first = std::clamp(window_start + window_frames / 2, 1, clean.frame_count - 1 - count);
+        const int first =
+            std::clamp(window_start + window_frames / 2, 1, clean.frame_count - 1 - count);
         flip(glitched, joint, first, count, glm::dvec3(1.0, 0.0, 0.0));
         const std::vector<Glitch> found = findGlitches(glitched);
         ASSERT_EQ(found.size(), 1u) << named.name << " '" << clean.name << "' " << count;
@@ -265,12 +269,13 @@ TEST(Glitch, InjectedFlipsInRealClipsAreFoundAndRepaired) {
           }
           apart = std::sqrt(apart / a.frame_count);
         }
-        std::printf("  %-36s %-8s %-16s %d frame(s) at %3d: %5.1f deg; K=5 error %.2f clean, %.2f "
-                    "repaired (%.2f kept), clip %.2f / %.2f; repair %.2f deg from the clean "
-                    "frames, models %.2f deg apart\n",
-                    named.name.c_str(), clean.name.c_str(), asset.skeleton.names[joint].c_str(),
-                    count, first, found[0].size_deg, joint_clean, joint_repaired, joint_kept,
-                    s.total.rot_err_deg_rms, again.value().total.rot_err_deg_rms, worst_frame, apart);
+        std::printf(
+            "  %-36s %-8s %-16s %d frame(s) at %3d: %5.1f deg; K=5 error %.2f clean, %.2f "
+            "repaired (%.2f kept), clip %.2f / %.2f; repair %.2f deg from the clean "
+            "frames, models %.2f deg apart\n",
+            named.name.c_str(), clean.name.c_str(), asset.skeleton.names[joint].c_str(), count,
+            first, found[0].size_deg, joint_clean, joint_repaired, joint_kept,
+            s.total.rot_err_deg_rms, again.value().total.rot_err_deg_rms, worst_frame, apart);
         // (Unless analysis of the glitched clip chose a window without it: the dog's.)
         if (joint_kept > 5.0) {
           EXPECT_GT(joint_kept, 3.0 * joint_repaired) << named.name << " " << count;

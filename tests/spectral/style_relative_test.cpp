@@ -32,7 +32,8 @@ motion::Clip half(const motion::Clip& clip, bool second) {
   return out;
 }
 
-TargetMotion targetOf(const motion::Skeleton& skeleton, const motion::Clip& clip, const std::string& name) {
+TargetMotion targetOf(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                      const std::string& name) {
   AnalysisSettings settings;
   settings.harmonics = 10;
   Result<MotionSpectrum> spectrum = analyze(skeleton, clip, settings);
@@ -69,23 +70,28 @@ void print(const std::string& what, const StyleScores& scores) {
 
 std::vector<StyleExample> firstHalfLibrary(const Halves& h) {
   std::vector<StyleExample> library;
-  for (size_t s = 0; s < h.first.size(); ++s) library.push_back({kStyles[s], h.first[0], h.first[s]});
+  for (size_t s = 0; s < h.first.size(); ++s)
+    library.push_back({kStyles[s], h.first[0], h.first[s]});
   return library;
 }
 
 TEST(StyleRelativeTest, SkeletonsAreMatchedByJointNamesAndHierarchy) {
   SINEW_REQUIRE_SHARED_DATA();
   Result<motion::MotionAsset> bandai_walk = motion::importMotion(bandai("walk_normal"));
-  Result<motion::MotionAsset> biped = motion::importMotion(test::sourceDir() / "assets" / "biped_walk.bvh");
+  Result<motion::MotionAsset> biped =
+      motion::importMotion(test::sourceDir() / "assets" / "biped_walk.bvh");
   ASSERT_TRUE(bandai_walk.ok() && biped.ok());
-  ASSERT_EQ(bandai_walk.value().skeleton.jointCount(), biped.value().skeleton.jointCount());  // 22 each
+  ASSERT_EQ(bandai_walk.value().skeleton.jointCount(),
+            biped.value().skeleton.jointCount());  // 22 each
   const Status status = sameJoints(biped.value().skeleton, bandai_walk.value().skeleton);
   ASSERT_FALSE(status.ok());
-  EXPECT_NE(status.message().find("joint 0 is 'joint_Root'"), std::string::npos) << status.message();
+  EXPECT_NE(status.message().find("joint 0 is 'joint_Root'"), std::string::npos)
+      << status.message();
   EXPECT_TRUE(sameJoints(bandai_walk.value().skeleton, bandai_walk.value().skeleton).ok());
   motion::Skeleton moved = bandai_walk.value().skeleton;
   moved.parents[5] = 0;
-  EXPECT_NE(sameJoints(bandai_walk.value().skeleton, moved).message().find("joint 5"), std::string::npos);
+  EXPECT_NE(sameJoints(bandai_walk.value().skeleton, moved).message().find("joint 5"),
+            std::string::npos);
 }
 
 TEST(StyleRelativeTest, DuplicateLabelsAreExamplesOfOneLabel) {
@@ -149,7 +155,8 @@ TEST(StyleRelativeTest, StyleAppliedToAnotherActorIsNamedAgainstThatActorsNeutra
   const auto turn = [&](const char* joint, const glm::dvec3& axis, double degrees) {
     const int j = skeleton.findJoint(joint);
     ASSERT_GE(j, 0) << joint;
-    actor.base_rotations[j] = glm::normalize(actor.base_rotations[j] * glm::angleAxis(glm::radians(degrees), axis));
+    actor.base_rotations[j] =
+        glm::normalize(actor.base_rotations[j] * glm::angleAxis(glm::radians(degrees), axis));
   };
   turn("Spine", {1, 0, 0}, 8.0);
   turn("UpperArm_L", {0, 0, 1}, 10.0);

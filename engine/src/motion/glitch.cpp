@@ -39,13 +39,15 @@ glm::dquat fromVector(const glm::dvec3& v) {
 // The joint's rotations, frame by frame.
 std::vector<glm::dquat> jointTrack(const Clip& clip, int joint) {
   std::vector<glm::dquat> track(static_cast<size_t>(clip.frame_count));
-  for (int f = 0; f < clip.frame_count; ++f) track[static_cast<size_t>(f)] = clip.rotation(f, joint);
+  for (int f = 0; f < clip.frame_count; ++f)
+    track[static_cast<size_t>(f)] = clip.rotation(f, joint);
   return track;
 }
 
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
-  const size_t k = std::min(values.size() - 1, static_cast<size_t>(q * static_cast<double>(values.size() - 1) + 0.5));
+  const size_t k = std::min(values.size() - 1,
+                            static_cast<size_t>(q * static_cast<double>(values.size() - 1) + 0.5));
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
   return values[k];
 }
@@ -57,20 +59,23 @@ double excursion(std::span<const glm::dquat> track, int first, int count) {
   double largest = 0.0;
   for (int k = 0; k < count; ++k) {
     const double t = static_cast<double>(k + 1) / static_cast<double>(count + 1);
-    largest = std::max(largest, angleBetween(track[static_cast<size_t>(first + k)], shortSlerp(before, after, t)));
+    largest = std::max(
+        largest, angleBetween(track[static_cast<size_t>(first + k)], shortSlerp(before, after, t)));
   }
   return largest;
 }
 
 // Glitches of one joint: for each frame the track jumps into by more than the threshold, the
 // shortest run that jumps back out, whose neighbours agree and whose excursion is large.
-void findInJoint(std::span<const glm::dquat> track, int joint, int max_frames, const GlitchSettings& settings,
-                 std::vector<Glitch>& out) {
+void findInJoint(std::span<const glm::dquat> track, int joint, int max_frames,
+                 const GlitchSettings& settings, std::vector<Glitch>& out) {
   const int frames = static_cast<int>(track.size());
   std::vector<double> steps(static_cast<size_t>(frames - 1));
-  for (int f = 0; f + 1 < frames; ++f) steps[static_cast<size_t>(f)] = angleBetween(track[f], track[f + 1]);
+  for (int f = 0; f + 1 < frames; ++f)
+    steps[static_cast<size_t>(f)] = angleBetween(track[f], track[f + 1]);
   const double typical = quantile(steps, settings.step_quantile);
-  const double threshold = std::max(settings.min_size_deg / kDegrees, settings.relative_size * typical);
+  const double threshold =
+      std::max(settings.min_size_deg / kDegrees, settings.relative_size * typical);
   for (int first = 1; first + 1 < frames; ++first) {
     if (steps[static_cast<size_t>(first - 1)] <= threshold) continue;  // no jump into this frame
     for (int count = 1; count <= max_frames && first + count < frames; ++count) {
@@ -139,7 +144,8 @@ void repairGlitches(Clip& clip, std::span<const Glitch> glitches) {
       for (int i = 0; i < 4; ++i) points[i] = toVector(inverse * clip.rotation(frames[i], g.joint));
     }
     for (int k = 0; k < g.frame_count; ++k) {
-      glm::dquat& q = clip.rotations[static_cast<size_t>(g.first_frame + k) * clip.joint_count + g.joint];
+      glm::dquat& q =
+          clip.rotations[static_cast<size_t>(g.first_frame + k) * clip.joint_count + g.joint];
       if (!cubic) {
         q = shortSlerp(q0, q1, static_cast<double>(k + 1) / static_cast<double>(g.frame_count + 1));
         continue;

@@ -22,18 +22,18 @@
 namespace sinew::motion {
 
 struct GlitchSettings {
-  double relative_size = 6.0;    // an excursion must exceed this many times the joint's typical
-                                 // step (step_quantile of its frame-to-frame rotation angles), > 0
-  double step_quantile = 0.9;    // which quantile of the joint's steps is its typical step, 0..1;
-                                 // high enough that fast phases count, low enough that a few
-                                 // glitch frames do not move it
-  double min_size_deg = 10.0;    // and exceed this angle, degrees, > 0: a still joint's sensor
-                                 // noise is tiny, and so is its typical step
-  double max_duration_s = 0.125; // longest run of glitch frames, seconds (at least one frame at
-                                 // any frame rate; 3 at 24 and 30 fps, 15 at 120), > 0; longer
-                                 // departures are motion
-  double max_across_ratio = 0.5; // the frames either side of the run are at most this fraction
-                                 // of the excursion apart, >= 0: the run left and came back
+  double relative_size = 6.0;     // an excursion must exceed this many times the joint's typical
+                                  // step (step_quantile of its frame-to-frame rotation angles), > 0
+  double step_quantile = 0.9;     // which quantile of the joint's steps is its typical step, 0..1;
+                                  // high enough that fast phases count, low enough that a few
+                                  // glitch frames do not move it
+  double min_size_deg = 10.0;     // and exceed this angle, degrees, > 0: a still joint's sensor
+                                  // noise is tiny, and so is its typical step
+  double max_duration_s = 0.125;  // longest run of glitch frames, seconds (at least one frame at
+                                  // any frame rate; 3 at 24 and 30 fps, 15 at 120), > 0; longer
+                                  // departures are motion
+  double max_across_ratio = 0.5;  // the frames either side of the run are at most this fraction
+                                  // of the excursion apart, >= 0: the run left and came back
 
   Status validate() const;  // the message names the offending field
 };
