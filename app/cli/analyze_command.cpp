@@ -147,6 +147,10 @@ int runAnalyze(const AnalyzeArgs& args) {
   Result<spectral::MotionSpectrum> spectrum =
       spectral::analyze(skeleton, asset.value().clips[clip.value()], settings);
   if (!spectrum.ok()) return fail(args.file + ": " + spectrum.message());
+  std::printf("glitches   %s\n", glitchSummary(asset.value(), clip.value()).c_str());
+  for (const motion::Glitch& glitch : asset.value().glitches[clip.value()]) {
+    std::printf("  glitch   %s\n", motion::describeGlitch(skeleton, glitch).c_str());
+  }
   printTable(skeleton, spectrum.value());
   const IndirectReport indirect =
       measureIndirect(skeleton, asset.value().clips[clip.value()], spectrum.value());
@@ -156,6 +160,7 @@ int runAnalyze(const AnalyzeArgs& args) {
     json.update(indirectJson(skeleton, indirect));
     json["file"] = toUtf8(args.file);  // a path is bytes; JSON text is UTF-8
     json["animation"] = asset.value().clips[clip.value()].name;
+    json["glitches"] = glitchJson(asset.value(), clip.value());
     json["settings"] = {{"harmonics", args.harmonics}, {"tolerance_cm", args.tolerance_cm},
                         {"max_strides", args.strides}};
     Status status = writeFileAtomically(

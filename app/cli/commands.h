@@ -7,6 +7,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "sinew/motion/asset.h"
 
@@ -17,6 +18,7 @@ struct ImportFlags {
   std::string units;  // "", m, cm, mm, in
   std::string up;     // "", Y, Z
   double fps = 0.0;   // 0: the file's own rate
+  bool keep_glitches = false;  // leave rotation glitches as they are (they are still reported)
   void addTo(CLI::App& command);
   // Options for the importer, or a message naming the bad flag.
   Result<motion::ImportOptions> options() const;
@@ -24,6 +26,12 @@ struct ImportFlags {
 
 // The clip called `name` (the first clip when empty), or a message listing the names there are.
 Result<int> selectClip(const motion::MotionAsset& asset, const std::string& name);
+
+// The rotation glitches import found in clip `clip`: "none", or how many, in which joints, and
+// whether they were repaired (the warnings list each one).
+std::string glitchSummary(const motion::MotionAsset& asset, int clip);
+// The same as a JSON array of {joint, first_frame, frames, size_deg, repaired}.
+nlohmann::json glitchJson(const motion::MotionAsset& asset, int clip);
 
 int fail(const std::string& message);  // prints "sinew: message" to stderr, returns 1
 

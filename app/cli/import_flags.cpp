@@ -1,4 +1,7 @@
 #include <iostream>
+#include <set>
+
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 
@@ -14,6 +17,9 @@ void ImportFlags::addTo(CLI::App& command) {
           "--fps", fps,
           "Frame rate to resample to (default: the file's own; for glTF the keys' median spacing)")
       ->check(CLI::Range(1.0 / 60.0, 1000.0));  // motion/limits.h: frame times up to 60 s
+  command.add_flag("--keep-glitches", keep_glitches,
+                   "Keep rotation glitches (a joint flipping away for a few frames) instead of "
+                   "repairing them by interpolation; they are reported either way");
 }
 
 Result<motion::ImportOptions> ImportFlags::options() const {
@@ -27,6 +33,7 @@ Result<motion::ImportOptions> ImportFlags::options() const {
     if (!options.up) return Status::error("--up: expected Y or Z, got '" + up + "'");
   }
   if (fps > 0.0) options.fps = fps;
+  options.repair_glitches = !keep_glitches;
   return options;
 }
 
@@ -54,6 +61,33 @@ CLI::Validator wholeNumber() {
         return digits ? std::string() : "expected a whole number >= 0, got '" + text + "'";
       },
       "N >= 0");
+}
+
+std::string glitchSummary(const motion::MotionAsset& asset, int clip) {
+  if (clip < 0 || clip >= static_cast<int>(asset.glitches.size()) || asset.glitches[clip].empty()) {
+    return "none";
+  }
+  const std::vector<motion::Glitch>& found = asset.glitches[clip];
+  std::set<int> joints;
+  for (const motion::Glitch& glitch : found) joints.insert(glitch.joint);
+  std::string names;
+  for (int joint : joints) names += (names.empty() ? "" : ", ") + asset.skeleton.names[joint];
+  return std::to_string(found.size()) + " in " + names +
+         (asset.glitches_repaired ? ", repaired by interpolation (--keep-glitches keeps them)"
+                                  : ", kept (--keep-glitches)");
+}
+
+nlohmann::json glitchJson(const motion::MotionAsset& asset, int clip) {
+  nlohmann::json list = nlohmann::json::array();
+  if (clip < 0 || clip >= static_cast<int>(asset.glitches.size())) return list;
+  for (const motion::Glitch& glitch : asset.glitches[clip]) {
+    list.push_back({{"joint", asset.skeleton.names[glitch.joint]},
+                    {"first_frame", glitch.first_frame},
+                    {"frames", glitch.frame_count},
+                    {"size_deg", glitch.size_deg},
+                    {"repaired", asset.glitches_repaired}});
+  }
+  return list;
 }
 
 int fail(const std::string& message) {

@@ -91,6 +91,7 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
     info["fps"] = clip.fps();
     info["frame_time_s"] = clip.frame_time;
     info["duration_s"] = clip.duration();
+    info["glitches"] = glitchJson(asset, selected);
   }
   return info;
 }
@@ -117,6 +118,7 @@ void printText(const motion::MotionAsset& asset, int selected, std::ostream& out
       << motion::upAxisName(asset.detection.frame.up) << "  (" << asset.detection.reason << ")\n"
       << "  height     " << std::fixed << std::setprecision(2) << asset.detection.height_m
       << " m\n" << std::defaultfloat;
+  if (selected >= 0) out << "  glitches   " << glitchSummary(asset, selected) << '\n';
   if (asset.clips.size() > 1 || asset.gltf) {
     out << "  animations " << asset.clips.size() << '\n';
     for (const motion::Clip& clip : asset.clips) {

@@ -98,22 +98,37 @@ void applyScale(std::vector<glm::dmat4>& world, double scale) {
   for (glm::dmat4& m : world) m = display * m;
 }
 
+// The joints above the pelvis (pelvisJoint): a root that only carries the hips, often left at
+// the origin (Bandai's joint_Root) while the character walks away. They carry no body, so no bone
+// is drawn from them: it would be a pole across the scene, and the camera would frame the origin.
+std::vector<bool> massless(const motion::Skeleton& skeleton) {
+  std::vector<bool> above(static_cast<size_t>(skeleton.jointCount()), false);
+  if (skeleton.jointCount() == 0) return above;
+  for (int j = skeleton.parents[motion::pelvisJoint(skeleton)]; j != motion::kNoParent;
+       j = skeleton.parents[j]) {
+    above[static_cast<size_t>(j)] = true;
+  }
+  return above;
+}
+
 void appendBones(const motion::Skeleton& skeleton, std::span<const glm::dmat4> world,
                  const glm::vec3& offset, float radius, bool end_sites, int selected,
                  const glm::vec4* model_color, std::vector<CapsuleInstance>& out) {
+  const std::vector<bool> above_pelvis = massless(skeleton);
   for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (above_pelvis[static_cast<size_t>(j)]) continue;
     const glm::vec3 p = glm::vec3(world[j][3]) + offset;
     glm::vec4 color = model_color != nullptr ? *model_color : sideColor(skeleton.names[j]);
     if (j == selected) color = model_color != nullptr ? kModelSelectedColor : kSelectedColor;
     const int parent = skeleton.parents[j];
-    if (parent != motion::kNoParent) {
+    if (parent != motion::kNoParent && !above_pelvis[static_cast<size_t>(parent)]) {
       const glm::vec3 q = glm::vec3(world[parent][3]) + offset;
       // No thicker than half its length: a chain of many short bones (10,000 joints) would
       // otherwise stack dozens of full-size capsules on every pixel (the renderer's cost).
       const float length = glm::length(p - q);
       if (length > 1e-4f) out.push_back({q, std::min(radius, 0.5f * length), p, 0.0f, color});
     } else {
-      out.push_back({p, radius * 1.3f, p, 0.0f, color});  // the root: a ball
+      out.push_back({p, radius * 1.3f, p, 0.0f, color});  // the body's root: a ball
     }
     if (end_sites && skeleton.end_sites[j]) {
       const glm::vec3 e = glm::vec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0)) + offset;
@@ -183,7 +198,8 @@ Scene buildScene(const EditorState& state) {
     }
   }
   applyScale(world0, scale);
-  scene.root = glm::vec3(world0[0][3]);
+  const int pelvis = joints > 0 ? motion::pelvisJoint(skeleton) : 0;
+  scene.root = glm::vec3(world0[pelvis][3]);
   if (state.view.show_original) {
     if (!meshes) {
       appendBones(skeleton, world0, glm::vec3(0.0f), radius, state.view.show_end_sites,
@@ -261,7 +277,7 @@ Scene buildScene(const EditorState& state) {
       motion::worldTransforms(skeleton, run, f, run_world);
       applyScale(run_world, scale);
       // Travel removed (the run stays beside the clip), height and falls kept.
-      glm::vec3 offset = scene.root - glm::vec3(run_world[0][3]);
+      glm::vec3 offset = scene.root - glm::vec3(run_world[pelvis][3]);
       offset.y = 0.0f;
       offset -= side * (0.5f * height * static_cast<float>(rank % kColumns + 1));
       offset -= forward * (0.7f * height * static_cast<float>(rank / kColumns));

@@ -66,7 +66,8 @@ struct Scene {
   bool shadows = true;                       // the key light casts shadows (a view toggle)
   glm::vec3 bounds_min{0.0f};                // of everything drawn but the population, metres
   glm::vec3 bounds_max{0.0f};
-  glm::vec3 root{0.0f};                      // the original's root joint, metres (follow target)
+  glm::vec3 root{0.0f};                      // the original's body root (the pelvis, pelvisJoint: a
+                                             // massless root above it is not drawn), metres (follow target)
   bool empty = true;
   std::vector<PickBox> individuals;          // the population's runs drawn, best first
 };

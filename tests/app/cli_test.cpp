@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -159,6 +160,109 @@ TEST(CliTest, StyleTransfersAndMeasures) {
                                                  " --styled " + bandai("walk_tired") +
                                                  " --weight 3 -o x.bvh");
   EXPECT_NE(bad.exit_code, 0);
+}
+
+// Styles are matched by joint names and hierarchy, not joint count: the Bandai rig and the bundled
+// biped both have 22 joints. Relative measurement takes pairs; a repeated label is several
+// examples of one label.
+TEST(CliTest, StylePairsAreMatchedByJointNamesAndMeasuredAgainstANeutral) {
+  SINEW_REQUIRE_SHARED_DATA();
+  test::TempDir dir;
+  const auto bandai = [](const std::string& what) {
+    return test::quote(test::sharedData() / "bvh" / ("bandai_dataset-1_" + what + "_001.bvh"));
+  };
+  const std::string bandai_path =
+      (test::sharedData() / "bvh" / "bandai_dataset-1_walk_tired_001.bvh").string();
+  const test::CommandResult foreign = test::runSinew("style --neutral " + walk() + " --styled " +
+                                                     bandai("walk_tired") + " -o " +
+                                                     test::quote(dir / "x.bvh"));
+  EXPECT_EQ(foreign.exit_code, 1);
+  EXPECT_EQ(foreign.err.rfind("sinew: " + bandai_path + ": not the skeleton of ", 0), 0u) << foreign.err;
+  EXPECT_NE(foreign.err.find("joint 0 is 'joint_Root'"), std::string::npos) << foreign.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.bvh"));
+  const test::CommandResult apply = test::runSinew("style --neutral " + bandai("walk_normal") +
+                                                   " --styled " + bandai("walk_tired") +
+                                                   " --apply-to " + walk() + " -o " +
+                                                   test::quote(dir / "x.bvh"));
+  EXPECT_EQ(apply.exit_code, 1);
+  EXPECT_NE(apply.err.find("biped_walk.bvh: not the skeleton of"), std::string::npos) << apply.err;
+
+  const test::CommandResult measure = test::runSinew(
+      "style --measure " + bandai("walk_angry") + " --neutral " + bandai("walk_normal") +
+      " --library normal=" + bandai("walk_normal") + "," + bandai("walk_normal") +
+      " tired=" + bandai("walk_normal") + "," + bandai("walk_tired") + " angry=" +
+      bandai("walk_normal") + "," + bandai("walk_angry") + " tired=" + bandai("walk_normal") +
+      "," + bandai("run_tired") + " --json " + test::quote(dir / "scores.json"));
+  ASSERT_EQ(measure.exit_code, 0) << measure.err;
+  EXPECT_NE(measure.out.find("2 examples"), std::string::npos) << measure.out;
+  const nlohmann::json scores = nlohmann::json::parse(test::readText(dir / "scores.json"));
+  EXPECT_EQ(scores["closest"], "angry");
+  EXPECT_EQ(scores["relative"], true);
+  ASSERT_EQ(scores["labels"].size(), 3u);
+  double total = 0.0;
+  for (const auto& label : scores["labels"]) total += label["score"].get<double>();
+  EXPECT_NEAR(total, 1.0, 1e-9);
+  const test::CommandResult unpaired = test::runSinew(
+      "style --measure " + bandai("walk_angry") + " --neutral " + bandai("walk_normal") +
+      " --library tired=" + bandai("walk_tired"));
+  EXPECT_EQ(unpaired.exit_code, 1);
+  EXPECT_NE(unpaired.err.find("has no neutral"), std::string::npos) << unpaired.err;
+}
+
+// A toe flipped 180 degrees for two frames: info and analyze name it and repair it;
+// --keep-glitches keeps it and still reports it.
+TEST(CliTest, GlitchesAreReportedAndRepairedUnlessKept) {
+  SINEW_REQUIRE_SHARED_DATA();
+  test::TempDir dir;
+  const std::filesystem::path source = test::sharedData() / "bvh" / "bandai_dataset-1_walk_normal_001.bvh";
+  std::string text = test::readText(source);
+  // Frame 100's and 101's Toes_L rotation: the joint's 6 channels are position then Z X Y.
+  const test::CommandResult info = test::runSinew("info --json " + test::quote(source));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json clean = nlohmann::json::parse(info.out);
+  EXPECT_TRUE(clean["glitches"].empty());
+  int toe = -1, channel = 0;
+  for (size_t j = 0; j < clean["joints"].size(); ++j) {
+    if (clean["joints"][j]["name"] == "Toes_L") toe = static_cast<int>(j);
+    if (toe < 0) channel += static_cast<int>(clean["joints"][j]["channels"].size());
+  }
+  ASSERT_GE(toe, 0);
+  const size_t motion = text.find("Frame Time:");
+  size_t line = text.find('\n', motion) + 1;
+  std::string out = text.substr(0, line);
+  for (int frame = 0; line < text.size(); ++frame) {
+    const size_t end = text.find('\n', line);
+    std::string row = text.substr(line, end == std::string::npos ? std::string::npos : end - line + 1);
+    if (frame == 100 || frame == 101) {
+      std::istringstream in(row);
+      std::vector<std::string> values;
+      for (std::string v; in >> v;) values.push_back(v);
+      values[static_cast<size_t>(channel + 4)] = std::to_string(std::stod(values[static_cast<size_t>(channel + 4)]) + 180.0);
+      row.clear();
+      for (const std::string& v : values) row += v + " ";
+      row += "\n";
+    }
+    out += row;
+    if (end == std::string::npos) break;
+    line = end + 1;
+  }
+  test::writeText(dir / "glitch.bvh", out);
+  const test::CommandResult found = test::runSinew("info --json " + test::quote(dir / "glitch.bvh"));
+  ASSERT_EQ(found.exit_code, 0) << found.err;
+  const nlohmann::json glitches = nlohmann::json::parse(found.out)["glitches"];
+  ASSERT_EQ(glitches.size(), 1u) << found.out;
+  EXPECT_EQ(glitches[0]["joint"], "Toes_L");
+  EXPECT_EQ(glitches[0]["first_frame"], 100);
+  EXPECT_EQ(glitches[0]["frames"], 2);
+  EXPECT_GT(glitches[0]["size_deg"].get<double>(), 150.0);
+  EXPECT_EQ(glitches[0]["repaired"], true);
+  const test::CommandResult analyzed = test::runSinew("analyze " + test::quote(dir / "glitch.bvh"));
+  ASSERT_EQ(analyzed.exit_code, 0) << analyzed.err;
+  EXPECT_NE(analyzed.out.find("glitches   1 in Toes_L, repaired"), std::string::npos) << analyzed.out;
+  EXPECT_NE(analyzed.out.find("glitch   Toes_L frames 100-101 (2)"), std::string::npos) << analyzed.out;
+  const test::CommandResult kept = test::runSinew("info --keep-glitches " + test::quote(dir / "glitch.bvh"));
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_NE(kept.out.find("glitches   1 in Toes_L, kept"), std::string::npos) << kept.out;
 }
 
 TEST(CliTest, CreatureWritesTheSameFileForTheSameSeed) {

@@ -75,6 +75,35 @@ TEST(EditorScene, FoxIsReadAsCentimetresAndDrawnAboutAMetreLong) {
   EXPECT_EQ(both.xray.size(), capsules.opaque.size());
 }
 
+// Bandai's joint_Root stays at the origin while the Hips walk 7-10 m away: no bone is drawn from
+// it (a pole across the scene), and the bounds the camera frames hold the character only.
+TEST(EditorScene, MasslessRootIsNotDrawnAndNotFramed) {
+  SINEW_REQUIRE_SHARED_DATA();
+  EditorState walk =
+      stateWith(test::sharedData() / "bvh" / "bandai_dataset-1_walk_normal_001.bvh", "");
+  ASSERT_TRUE(walk.asset);
+  const motion::Skeleton& skeleton = walk.asset->skeleton;
+  ASSERT_EQ(skeleton.names[0], "joint_Root");
+  const int hips = skeleton.findJoint("Hips");
+  ASSERT_EQ(motion::pelvisJoint(skeleton), hips);
+  walk.playback.time_s = 5.0;  // metres from the origin by now
+  const Scene scene = buildScene(walk);
+  const std::vector<glm::dvec3> world =
+      motion::worldPositions(skeleton, walk.asset->clips[0], static_cast<int>(5.0 / walk.asset->clips[0].frame_time));
+  const glm::vec3 root(world[0]);
+  const glm::vec3 pelvis(world[static_cast<size_t>(hips)]);
+  ASSERT_GT(glm::length(pelvis - root), 2.0f);
+  for (const CapsuleInstance& c : scene.opaque) {
+    EXPECT_GT(glm::length(c.a - root), 1.0f);  // nothing drawn at the origin
+    EXPECT_GT(glm::length(c.b - root), 1.0f);
+  }
+  EXPECT_LT(glm::length(scene.root - pelvis), 0.05f);  // the camera follows the hips
+  const glm::vec3 size = scene.bounds_max - scene.bounds_min;
+  std::cout << "Bandai walk drawn: " << size.x << " x " << size.y << " x " << size.z << " m\n";
+  EXPECT_LT(std::max(size.x, size.z), 1.5f);  // a person, not a person and a pole
+  EXPECT_GT(size.y, 1.4f);
+}
+
 // The mesh follows the capsules: at several playback times (between frames too), every vertex
 // bound to one joint keeps its bind-pose distance to that joint, the joint's position taken from
 // the capsules the same scene draws.
@@ -93,13 +122,20 @@ TEST(EditorScene, FoxMeshFollowsTheCapsulesPose) {
     fox.playback.time_s = t;
     const Scene scene = buildScene(fox);
     ASSERT_EQ(scene.skinned.size(), 1u);
-    // Joint positions from the capsules: the root's ball, then per joint the end `b` of the bone
-    // from its parent (bones of no length, here the rig's two top joints, have no capsule).
+    // Joint positions from the capsules: the body root's ball (the pelvis; the joints above it
+    // are not drawn), then per joint the end `b` of the bone from its parent (bones of no length
+    // have no capsule).
     std::vector<glm::vec3> joint(static_cast<size_t>(skeleton.jointCount()), glm::vec3(NAN));
+    std::vector<bool> above(static_cast<size_t>(skeleton.jointCount()), false);
+    for (int j = skeleton.parents[motion::pelvisJoint(skeleton)]; j != motion::kNoParent;
+         j = skeleton.parents[j]) {
+      above[static_cast<size_t>(j)] = true;
+    }
     size_t capsule = 0;
     for (int j = 0; j < skeleton.jointCount(); ++j) {
+      if (above[static_cast<size_t>(j)]) continue;
       const int parent = skeleton.parents[j];
-      if (parent == motion::kNoParent) {
+      if (parent == motion::kNoParent || above[static_cast<size_t>(parent)]) {
         joint[j] = scene.xray.at(capsule++).a;
       } else if (glm::length(glm::dvec3(rest[j][3]) - glm::dvec3(rest[parent][3])) * 0.01 > 1e-4) {
         joint[j] = scene.xray.at(capsule++).b;

@@ -18,6 +18,36 @@ std::string lowerExtension(const std::filesystem::path& path) {
   return ext;
 }
 
+// Finds (and unless asked not to, repairs) each clip's glitches, and says so in the warnings.
+void handleGlitches(MotionAsset& asset, const ImportOptions& options) {
+  asset.glitches.clear();
+  asset.glitches_repaired = options.repair_glitches;
+  for (Clip& clip : asset.clips) {
+    std::vector<Glitch> found = findGlitches(clip, options.glitch);
+    if (options.repair_glitches) repairGlitches(clip, found);
+    for (const Glitch& glitch : found) {
+      asset.warnings.push_back((asset.clips.size() > 1 ? clip.name + ": " : std::string()) + "glitch " +
+                               describeGlitch(asset.skeleton, glitch) +
+                               (options.repair_glitches ? ", repaired" : ", kept"));
+    }
+    asset.glitches.push_back(std::move(found));
+  }
+}
+
+Result<MotionAsset> readAny(const std::filesystem::path& path, const ImportOptions& options) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".bvh") {
+    Result<std::string> text = readFile(path);
+    if (!text.ok()) return text.status();
+    Result<MotionAsset> asset = readBvh(text.value(), path.string(), options);
+    if (asset.ok()) asset.value().path = path;
+    return asset;
+  }
+  if (ext == ".glb" || ext == ".gltf") return loadGltf(path, options);
+  return Status::error(path.string() + ": unknown file type '" + ext +
+                       "', expected .bvh, .glb or .gltf");
+}
+
 }  // namespace
 
 int MotionAsset::findClip(const std::string& name) const {
@@ -31,17 +61,10 @@ Result<MotionAsset> importMotion(const std::filesystem::path& path, const Import
   if (options.fps && !(*options.fps > 0.0 && *options.fps <= 1000.0)) {
     return Status::error("fps must be in (0, 1000], got " + std::to_string(*options.fps));
   }
-  const std::string ext = lowerExtension(path);
-  if (ext == ".bvh") {
-    Result<std::string> text = readFile(path);
-    if (!text.ok()) return text.status();
-    Result<MotionAsset> asset = readBvh(text.value(), path.string(), options);
-    if (asset.ok()) asset.value().path = path;
-    return asset;
-  }
-  if (ext == ".glb" || ext == ".gltf") return loadGltf(path, options);
-  return Status::error(path.string() + ": unknown file type '" + ext +
-                       "', expected .bvh, .glb or .gltf");
+  if (Status status = options.glitch.validate(); !status.ok()) return status;
+  Result<MotionAsset> asset = readAny(path, options);
+  if (asset.ok()) handleGlitches(asset.value(), options);
+  return asset;
 }
 
 Status exportMotion(const std::filesystem::path& path, const MotionAsset& asset, const Clip& clip,

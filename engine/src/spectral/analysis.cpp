@@ -9,8 +9,33 @@
 #include <span>
 #include <sstream>
 
+#include "sinew/spectral/indirect.h"
+
 namespace sinew::spectral {
 namespace {
+
+// Each foot's contact point height (its lowest joint or End Site) per frame, world metres: the
+// stride's cross-check (estimateStride). Empty when no feet are found.
+std::vector<std::vector<double>> footHeights(const motion::Skeleton& skeleton, const motion::Clip& clip) {
+  Result<std::vector<Foot>> feet = findFeet(skeleton, clip);
+  if (!feet.ok() || feet.value().empty()) return {};
+  std::vector<std::vector<double>> heights(feet.value().size(),
+                                           std::vector<double>(static_cast<size_t>(clip.frame_count)));
+  std::vector<glm::dmat4> world(static_cast<size_t>(skeleton.jointCount()));
+  for (int f = 0; f < clip.frame_count; ++f) {
+    motion::worldTransforms(skeleton, clip, f, world);
+    for (size_t n = 0; n < feet.value().size(); ++n) {
+      double lowest = 1e300;
+      for (const FootPoint& point : feet.value()[n].points) {
+        const glm::dmat4& m = world[static_cast<size_t>(point.joint)];
+        const double y = point.end_site ? (m * glm::dvec4(*skeleton.end_sites[point.joint], 1.0)).y : m[3].y;
+        lowest = std::min(lowest, y);
+      }
+      heights[n][static_cast<size_t>(f)] = lowest;
+    }
+  }
+  return heights;
+}
 
 // Seconds since the last lap (or construction).
 class StageClock {
@@ -471,11 +496,11 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
   const double duration = (clip.frame_count - 1) * dt;
   time.signals_s = clock.lap();
 
-  spectrum.stride = estimateStride(signals, settings.cycle);
+  spectrum.stride = estimateStride(signals, settings.cycle, footHeights(skeleton, clip));
   time.stride_s = clock.lap();
   std::vector<AnalysisWindow> candidates;
   if (spectrum.stride.found) {
-    candidates = candidateWindows(signals, spectrum.stride.period_s, settings.max_strides);
+    candidates = candidateWindows(signals, spectrum.stride.period_s, settings.max_strides, 0.03);
     time.windows_s = clock.lap();
   } else {
     // No rhythm: the whole clip as one cycle (its seam is what it is), so there is still a

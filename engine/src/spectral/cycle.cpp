@@ -139,9 +139,23 @@ double refinePeak(double before, double at, double after) {
   return std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5);
 }
 
+// The feet's heights as a selection of their own (each centred by similarityTable).
+Selection footSelection(const std::vector<std::vector<double>>& foot_heights, int frames) {
+  Selection selection;
+  for (const std::vector<double>& heights : foot_heights) {
+    if (static_cast<int>(heights.size()) != frames) continue;
+    const double n = static_cast<double>(frames);
+    const double mean = sum(heights, [](double v) { return v; }) / n;
+    selection.values.push_back(&heights);
+    selection.variance += sum(heights, [mean](double v) { return (v - mean) * (v - mean); }) / n;
+  }
+  return selection;
+}
+
 }  // namespace
 
-StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings) {
+StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings,
+                              const std::vector<std::vector<double>>& foot_heights) {
   StrideEstimate estimate;
   const Selection selection = selectChannels(signals);
   const int frames = signals.frame_count;
@@ -166,14 +180,12 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
   const std::vector<double> sim = similarityTable(selection, frames);
   // Local maxima above the threshold; the first that is nearly as strong as the best wins (the
   // best may sit at two or three strides).
-  double best = 0.0;
   std::vector<int> peaks;
   for (int lag = min_lag; lag <= max_lag; ++lag) {
     const bool rising = sim[lag] >= sim[lag - 1];
     const bool falling = lag + 1 > max_lag || sim[lag] >= sim[lag + 1];
     if (rising && falling && sim[lag] >= settings.min_similarity) {
       peaks.push_back(lag);
-      best = std::max(best, sim[lag]);
     }
   }
   if (peaks.empty()) {
@@ -186,9 +198,25 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
     estimate.message = why.str();
     return estimate;
   }
+  // The feet cross-check: each peak scored by the mean of the pose's similarity and the feet's
+  // (their best within a frame: the feet's peak need not fall on the pose's frame).
+  const Selection feet = footSelection(foot_heights, frames);
+  const bool check_feet = feet.variance > 1e-12;
+  const std::vector<double> foot_sim = check_feet ? similarityTable(feet, frames) : std::vector<double>();
+  const auto footAt = [&](int lag) {
+    if (!check_feet) return 0.0;
+    double value = foot_sim[lag];
+    for (int near = std::max(0, lag - 1); near <= std::min(frames - 2, lag + 1); ++near) {
+      value = std::max(value, foot_sim[near]);
+    }
+    return value;
+  };
+  const auto score = [&](int lag) { return check_feet ? 0.5 * (sim[lag] + footAt(lag)) : sim[lag]; };
+  double best_score = -1e30;
+  for (int lag : peaks) best_score = std::max(best_score, score(lag));
   int chosen = peaks.back();
   for (int lag : peaks) {
-    if (sim[lag] >= best - 0.05) {
+    if (score(lag) >= best_score - 0.05) {
       chosen = lag;
       break;
     }
@@ -211,6 +239,8 @@ StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings&
   estimate.found = true;
   estimate.period_s = period;
   estimate.similarity = sim[chosen];
+  estimate.feet_checked = check_feet;
+  estimate.foot_similarity = footAt(chosen);
   return estimate;
 }
 

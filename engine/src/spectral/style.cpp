@@ -251,6 +251,85 @@ Result<TargetMotion> applyStyles(const TargetMotion& target,
   return out;
 }
 
+Status sameJoints(const motion::Skeleton& reference, const motion::Skeleton& other) {
+  const int joints = std::max(reference.jointCount(), other.jointCount());
+  const auto describe = [](const motion::Skeleton& s, int j) {
+    if (j >= s.jointCount()) return std::string("no joint ") + std::to_string(j);
+    const int parent = s.parents[j];
+    return "'" + s.names[j] + "' (parent " +
+           (parent == motion::kNoParent ? std::string("none") : "'" + s.names[parent] + "'") + ")";
+  };
+  for (int j = 0; j < joints; ++j) {
+    const bool same = j < reference.jointCount() && j < other.jointCount() &&
+                      reference.names[j] == other.names[j] &&
+                      reference.parents[j] == other.parents[j];
+    if (!same) {
+      return Status::error("joint " + std::to_string(j) + " is " + describe(other, j) +
+                           ", where the other skeleton has " + describe(reference, j));
+    }
+  }
+  return {};
+}
+
+namespace {
+
+// Scores from each entry's distance (in Gaussian widths), merged per label: the nearest example
+// of a label is its distance.
+StyleScores scoresFromDistances(const std::vector<std::string>& labels,
+                                const std::vector<double>& distances) {
+  StyleScores scores;
+  std::vector<double> nearest;
+  for (size_t n = 0; n < labels.size(); ++n) {
+    size_t at = 0;
+    while (at < scores.scores.size() && scores.scores[at].first != labels[n]) ++at;
+    if (at == scores.scores.size()) {
+      scores.scores.emplace_back(labels[n], 0.0);
+      nearest.push_back(distances[n]);
+      scores.examples.push_back(0);
+    }
+    nearest[at] = std::min(nearest[at], distances[n]);
+    ++scores.examples[at];
+  }
+  double total = 0.0;
+  std::vector<double> raw;
+  for (double d : nearest) {
+    raw.push_back(std::exp(-0.5 * d * d));
+    total += raw.back();
+  }
+  for (size_t n = 0; n < raw.size(); ++n) {
+    scores.scores[n].second = total > 0.0 ? raw[n] / total : 1.0 / static_cast<double>(raw.size());
+  }
+  // The nearest label (the highest score; also when every Gaussian underflows).
+  const auto at = std::min_element(nearest.begin(), nearest.end()) - nearest.begin();
+  scores.closest = scores.scores[static_cast<size_t>(at)].first;
+  scores.distances = nearest;
+  return scores;
+}
+
+double rms(const std::vector<double>& a, const std::vector<double>& b) {
+  double squared = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) squared += (a[i] - b[i]) * (a[i] - b[i]);
+  return a.empty() ? 0.0 : std::sqrt(squared / static_cast<double>(a.size()));
+}
+
+// Root-sum-square amplitude of each joint's rotation harmonics, radians.
+std::vector<double> jointAmplitudes(const TargetMotion& target) {
+  std::vector<double> squared(static_cast<size_t>(target.jointCount()), 0.0);
+  for (const ChannelModel& channel : target.channels) {
+    if (channel.kind != SignalKind::kRotation) continue;
+    for (const Harmonic& h : channel.terms) squared[channel.joint] += h.amplitude * h.amplitude;
+  }
+  for (double& v : squared) v = std::sqrt(v);
+  return squared;
+}
+
+constexpr double kPostureScale = 0.0873;     // 5 degrees, radians
+constexpr double kAmplitudeScale = 0.2231;   // ln 1.25
+constexpr double kTempoScale = 0.0953;       // ln 1.1
+constexpr double kAmplitudeFloor = 0.02;     // radians
+
+}  // namespace
+
 Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMotion& clip,
                                const std::vector<std::pair<std::string, TargetMotion>>& library) {
   if (library.empty()) return Status::error("style library is empty");
@@ -285,32 +364,70 @@ Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMot
     }
     return f;
   };
-  std::vector<std::vector<double>> entries;
-  for (const auto& [label, entry] : library) entries.push_back(features(entry));
   const std::vector<double> probe = features(clip);
-  // Every feature is an angle, so distances need no scaling: the RMS angular difference, turned
-  // into scores by a Gaussian of 5 degrees (the size of a visible change of attitude).
-  constexpr double kScale = 0.0873;  // 5 degrees, radians
-  StyleScores scores;
-  double total = 0.0;
-  std::vector<double> raw;
-  for (const auto& e : entries) {
-    double squared = 0.0;
-    for (size_t i = 0; i < probe.size(); ++i) squared += (probe[i] - e[i]) * (probe[i] - e[i]);
-    const double rms = probe.empty() ? 0.0 : std::sqrt(squared / static_cast<double>(probe.size()));
-    raw.push_back(std::exp(-0.5 * (rms / kScale) * (rms / kScale)));
-    total += raw.back();
+  // Every feature is an angle, so distances need no scaling: the RMS angular difference, in
+  // units of 5 degrees (the size of a visible change of attitude).
+  std::vector<std::string> labels;
+  std::vector<double> distances;
+  for (const auto& [label, entry] : library) {
+    labels.push_back(label);
+    distances.push_back(rms(probe, features(entry)) / kPostureScale);
   }
-  double best = -1.0;
-  for (size_t n = 0; n < library.size(); ++n) {
-    const double score = total > 0.0 ? raw[n] / total : 1.0 / library.size();
-    scores.scores.emplace_back(library[n].first, score);
-    if (score > best) {
-      best = score;
-      scores.closest = library[n].first;
+  return scoresFromDistances(labels, distances);
+}
+
+RelativeStyle relativeStyle(const motion::Skeleton& skeleton, const TargetMotion& neutral,
+                            const TargetMotion& styled) {
+  RelativeStyle style;
+  for (int j : carriageJoints(skeleton)) {
+    glm::dquat relative = glm::conjugate(neutral.base_rotations[j]) * styled.base_rotations[j];
+    if (relative.w < 0.0) relative = -relative;
+    const glm::dvec3 v = rotationVector(relative);
+    style.posture.insert(style.posture.end(), {v.x, v.y, v.z});
+  }
+  const int pelvis = motion::pelvisJoint(skeleton);
+  std::vector<bool> above(static_cast<size_t>(skeleton.jointCount()), false);
+  for (int j = pelvis; j != motion::kNoParent; j = skeleton.parents[j]) above[j] = true;
+  const std::vector<double> a = jointAmplitudes(neutral);
+  const std::vector<double> b = jointAmplitudes(styled);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (above[j]) continue;  // the heading, not the style
+    style.amplitude.push_back(std::log(std::max(b[j], kAmplitudeFloor) / std::max(a[j], kAmplitudeFloor)));
+  }
+  style.log_tempo = std::log(styled.omega0 / neutral.omega0);
+  return style;
+}
+
+Result<StyleScores> scoreStyleRelative(const motion::Skeleton& skeleton, const TargetMotion& clip,
+                                       const TargetMotion& neutral,
+                                       const std::vector<StyleExample>& library) {
+  if (library.empty()) return Status::error("style library is empty");
+  const int joints = skeleton.jointCount();
+  const auto check = [joints](const TargetMotion& target, const std::string& what) -> Status {
+    if (target.jointCount() != joints || !(target.omega0 > 0.0)) {
+      return Status::error(what + " has " + std::to_string(target.jointCount()) +
+                           " joints; the skeleton has " + std::to_string(joints));
     }
+    return {};
+  };
+  if (Status status = check(clip, "the clip"); !status.ok()) return status;
+  if (Status status = check(neutral, "the neutral"); !status.ok()) return status;
+  for (const StyleExample& example : library) {
+    if (Status status = check(example.neutral, "style '" + example.label + "': the neutral"); !status.ok()) return status;
+    if (Status status = check(example.styled, "style '" + example.label + "': the styled clip"); !status.ok()) return status;
   }
-  return scores;
+  const RelativeStyle probe = relativeStyle(skeleton, neutral, clip);
+  std::vector<std::string> labels;
+  std::vector<double> distances;
+  for (const StyleExample& example : library) {
+    const RelativeStyle entry = relativeStyle(skeleton, example.neutral, example.styled);
+    const double posture = rms(probe.posture, entry.posture) / kPostureScale;
+    const double amplitude = rms(probe.amplitude, entry.amplitude) / kAmplitudeScale;
+    const double tempo = std::abs(probe.log_tempo - entry.log_tempo) / kTempoScale;
+    labels.push_back(example.label);
+    distances.push_back(std::sqrt((posture * posture + amplitude * amplitude + tempo * tempo) / 3.0));
+  }
+  return scoresFromDistances(labels, distances);
 }
 
 }  // namespace sinew::spectral

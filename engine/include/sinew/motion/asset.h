@@ -15,6 +15,7 @@
 
 #include "sinew/core/status.h"
 #include "sinew/motion/clip.h"
+#include "sinew/motion/glitch.h"
 #include "sinew/motion/skeleton.h"
 #include "sinew/motion/units.h"
 
@@ -48,6 +49,8 @@ struct ImportOptions {
   std::optional<UpAxis> up;        // BVH: override the detected up axis
   std::optional<double> fps;       // glTF: resampling rate; default: each animation's median
                                    // key spacing. Must be in (0, 1000].
+  bool repair_glitches = true;     // repair the glitches found (glitch.h); false keeps them
+  GlitchSettings glitch;           // what counts as a glitch
 };
 
 struct MotionAsset {
@@ -57,6 +60,8 @@ struct MotionAsset {
   std::vector<SkinnedMesh> meshes;      // glTF skinned meshes; empty for BVH
   FrameDetection detection;             // units and up axis, and why
   std::vector<std::string> warnings;    // things the user should know; nothing was lost silently
+  std::vector<std::vector<Glitch>> glitches;  // (clips) rotation glitches found on import
+  bool glitches_repaired = false;       // they were repaired (ImportOptions::repair_glitches)
   std::shared_ptr<const GltfSource> gltf;  // set when the rig came from glTF
 
   // Index of the clip with that name, or -1.
@@ -64,6 +69,8 @@ struct MotionAsset {
 };
 
 // Reads a .bvh, .glb or .gltf file. Every failure names the file, and for text formats the line.
+// Rotation glitches are found in every clip, listed in `glitches` and the warnings, and (by
+// default) repaired.
 Result<MotionAsset> importMotion(const std::filesystem::path& path, const ImportOptions& options = {});
 
 struct ExportOptions {

@@ -20,13 +20,23 @@ struct StrideEstimate {
   bool found = false;
   double period_s = 0.0;     // the stride, seconds (sub-frame precision)
   double similarity = 0.0;   // 1 - (mean squared change over one period) / (2 * variance), 0..1
+  double foot_similarity = 0.0;  // the same for the feet's heights (0 without feet)
+  bool feet_checked = false;     // the feet's heights took part in choosing the stride
   std::string message;       // why no stride was found, for the user
 };
 
 // Finds the shortest lag at which the whole pose repeats: the first strong peak of the
-// variance-weighted similarity of every rotation channel (and the travel joint's height) with
-// itself shifted by that lag, refined between frames by a parabola.
-StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings = {});
+// variance-weighted similarity of every rotation channel with itself shifted by that lag,
+// refined between frames by a parabola and on the repeats while they stay as strong.
+//
+// `foot_heights` (feet x frames, metres; may be empty) cross-checks the choice: a foot's height
+// repeats only over the whole stride (half a stride later the other foot is the one in the air),
+// so when several peaks are nearly as strong, the first whose mean of the pose's and the feet's
+// similarity is nearly the best wins. That decides a slow walk whose every large channel moves
+// twice a stride (trunk, arms, knees) and whose stride-to-stride variation makes the step look
+// as periodic as the stride.
+StrideEstimate estimateStride(const MotionSignals& signals, const CycleSettings& settings = {},
+                              const std::vector<std::vector<double>>& foot_heights = {});
 
 struct AnalysisWindow {
   double start_s = 0.0;   // window start, seconds from the clip's first frame

@@ -64,15 +64,54 @@ Result<TargetMotion> applyStyles(const TargetMotion& target,
 // Skeleton order.
 std::vector<int> carriageJoints(const motion::Skeleton& skeleton);
 
-// Style measurement: how close `clip` is to each labelled library clip (clips of one skeleton)
-// in what a style changes and an action does not: the posture of the carriage joints (each one's
-// mean rotation, relative to the library's mean), compared as RMS angles. Scores in [0, 1]
-// (a Gaussian of the RMS angle, 5 degrees wide, normalised), summing to 1.
+// OK when `other` has `reference`'s joints by name and hierarchy (same names in the same order,
+// same parents); otherwise names the first joint that differs. A style measured on one skeleton
+// means nothing on another with the same joint count.
+Status sameJoints(const motion::Skeleton& reference, const motion::Skeleton& other);
+
+// Style measurement. Scores in [0, 1], one per label (several library entries may share a label:
+// they are examples of it, and the nearest one counts), summing to 1.
 struct StyleScores {
   std::string closest;
-  std::vector<std::pair<std::string, double>> scores;  // label -> score, library order
+  std::vector<std::pair<std::string, double>> scores;  // label -> score, in first-seen order
+  std::vector<double> distances;  // (labels) the nearest example's distance, in the units the
+                                  // Gaussian is 1 wide (see scoreStyle and scoreStyleRelative)
+  std::vector<int> examples;      // (labels) library entries with that label
 };
+
+// Absolute: how close `clip` is to each labelled library clip (clips of one skeleton) in what a
+// style changes and an action does not: the posture of the carriage joints (each one's mean
+// rotation, relative to the library's mean), compared as RMS angles; a Gaussian of the RMS
+// angle, 5 degrees wide (distances in units of 5 degrees), normalised.
 Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMotion& clip,
                                const std::vector<std::pair<std::string, TargetMotion>>& library);
+
+// A library entry measured relative to its own actor's neutral (same action, same skeleton).
+struct StyleExample {
+  std::string label;
+  TargetMotion neutral;
+  TargetMotion styled;
+};
+
+// What a style changes, relative to a neutral of the same actor and action: the carriage
+// joints' posture change (rotation vectors, radians), each moving joint's change of amplitude
+// (log ratio of its rotation harmonics' root-sum-square amplitude; a joint under 0.02 rad in the
+// neutral counts from 0.02) and the tempo change (log ratio). Differences between actors (their
+// proportions, their own carriage and swing) cancel.
+struct RelativeStyle {
+  std::vector<double> posture;    // (3 x carriage joints) radians
+  std::vector<double> amplitude;  // (joints below the pelvis) log ratios
+  double log_tempo = 0.0;
+};
+RelativeStyle relativeStyle(const motion::Skeleton& skeleton, const TargetMotion& neutral,
+                            const TargetMotion& styled);
+
+// Relative: `clip`'s style against `neutral` (same actor) compared with each example's against
+// its own neutral. The distance combines, each scaled to a just-visible change and then RMS'd
+// over the three parts: the posture RMS over 5 degrees, the amplitude RMS over ln 1.25, and the
+// tempo over ln 1.1; the score is a Gaussian of it, 1 wide, normalised over the labels.
+Result<StyleScores> scoreStyleRelative(const motion::Skeleton& skeleton, const TargetMotion& clip,
+                                       const TargetMotion& neutral,
+                                       const std::vector<StyleExample>& library);
 
 }  // namespace sinew::spectral
