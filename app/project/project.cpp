@@ -406,7 +406,8 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
                  {"show_grid", v.show_grid},
                  {"show_end_sites", v.show_end_sites},
                  {"show_population", v.show_population}};
-  return out.dump(2) + "\n";
+  // Paths are bytes; JSON is UTF-8: a non-UTF-8 byte is written as U+FFFD, never a crash.
+  return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 Status saveProject(const Project& project, const std::filesystem::path& path) {

@@ -187,7 +187,9 @@ TEST(SearchSession, ShortRunsImproveTheStepperAndTheHopper) {
     const physics::test_util::Character c = physics::test_util::loadCharacter(file);
     ASSERT_FALSE(c.plan.links.empty());
     EvolveSettings settings;
-    settings.generations = 6;
+    // 10 generations: the hopper's sole is fitted to its clip now, and its first generation
+    // starts better (28.0) and improves 8% in 6, 13% in 10 (22% in 6 before).
+    settings.generations = 10;
     settings.seed = 1;
     auto session = Session::create(makeProblem(c, 4.0), settings).value();
     while (session->runGeneration()) {

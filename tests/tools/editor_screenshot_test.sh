@@ -193,7 +193,9 @@ PY
          "$dark_mesh (shadows off: $dark_no_shadows)"
     grep -q 'Fox.glb: 1 skinned mesh, 1,728 vertices' "$work/fox_mesh.log" \
       || { echo "FAIL: the log does not report the Fox's mesh"; exit 1; }
-    [ "$orange_mesh" -ge 2000 ] || { echo "FAIL: the Fox's coat is not in the viewport"; exit 1; }
+    # 1,800 samples since the camera frames the character (and its model beside it) rather than the
+    # origin; 48 with capsules only.
+    [ "$orange_mesh" -ge 1200 ] || { echo "FAIL: the Fox's coat is not in the viewport"; exit 1; }
     [ "$orange_no_mesh" -lt 1000 ] || { echo "FAIL: orange without the mesh: the check is blind"; exit 1; }
     [ "$dark_mesh" -ge 1000 ] || { echo "FAIL: no shadow on the floor"; exit 1; }
     [ "$dark_no_shadows" -lt 300 ] || { echo "FAIL: dark pixels without shadows: the check is blind"; exit 1; }
