@@ -250,9 +250,6 @@ constexpr double kGroundBand = 0.1;
 // Chain ends closer than this fraction of the figure's height (along the bones) to the joint
 // where they branch are one foot (toes of one paw), not two.
 constexpr double kOneFootReach = 0.15;
-// Below this horizontal speed of the centre of mass the clip runs in place, and the figure's
-// facing replaces the travel direction, m/s.
-constexpr double kInPlaceSpeed = 0.1;
 
 // ---------------------------------------------------------------- names
 
