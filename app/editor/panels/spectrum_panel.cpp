@@ -106,7 +106,11 @@ void drawCurves(const EditorState& state, int joint) {
   const int k = analysis.joint_k[static_cast<size_t>(joint)];
   const double dt = spectrum.signals.frame_time;
   const double start = spectrum.window.start_s;
-  const auto [first, last] = spectral::windowFrameRange(spectrum);  // the frames the model fits
+  // The frames the model fits; plain names, not a structured binding, so that the lambdas below
+  // may capture them (clang 14 refuses captured bindings).
+  const auto range = spectral::windowFrameRange(spectrum);
+  const auto first = range.first;
+  const auto last = range.second;
   if (last <= first) return;
   struct Curve {
     std::vector<ImVec2> original, model;
