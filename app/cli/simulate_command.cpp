@@ -119,23 +119,23 @@ int runSimulate(const SimulateArgs& args) {
     settings.tracking.balance = controller.value().balance;
   }
   if (!args.balance.empty()) {
-    if (args.balance.size() != 5)
+    if (args.balance.size() != 5 && args.balance.size() != 8)
       return fail(
-          "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO, "
-          "got " +
+          "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
+          "(or 8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT), got " +
           std::to_string(args.balance.size()));
-    for (size_t i = 0; i < 4; ++i)
-      if (!(std::abs(args.balance[i]) <= search::kMaxBalanceGain))
-        return fail("--balance: value " + std::to_string(i + 1) +
-                    " is beyond the limit of +-100 (rad/m, rad/(m/s))");
-    if (!(args.balance[4] >= 0.0 && args.balance[4] <= 1.0))
-      return fail("--balance: TORSO (value 5) is a share from 0 to 1");
     physics::BalanceGains& b = settings.tracking.balance;
-    b.cd_sagittal = args.balance[0];
-    b.cv_sagittal = args.balance[1];
-    b.cd_coronal = args.balance[2];
-    b.cv_coronal = args.balance[3];
-    b.torso = args.balance[4];
+    for (size_t i = 0; i < args.balance.size(); ++i) {
+      const int g = static_cast<int>(i);
+      const double v = args.balance[i];
+      const double limit = physics::balanceGainLimit(g, search::kMaxBalanceGain);
+      if (physics::balanceGainIsShare(g) ? !(v >= 0.0 && v <= limit) : !(std::abs(v) <= limit))
+        return fail("--balance: " + std::string(physics::balanceGainName(g)) + " (value " +
+                    std::to_string(i + 1) + ") must be " +
+                    (physics::balanceGainIsShare(g) ? (limit == 1.0 ? std::string("a share from 0 to 1") : std::string("from 0 to 0.1"))
+                                                    : std::string("within +-100")));
+      physics::balanceGain(b, g) = v;
+    }
   }
   settings.start_moving = !args.from_standing;
   const physics::BodyPlan& plan = built.value();
@@ -212,7 +212,8 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
   command
       ->add_option("--balance", args->balance,
                    "Balance feedback gains CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
-                   "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1)")
+                   "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1), optionally then "
+                   "ANKLE_SAGITTAL,ANKLE_CORONAL (rad/(m/s)),SWING_LIFT (per rig size, 0..0.1)")
       ->delimiter(',');
   command->add_flag("--from-standing", args->from_standing,
                     "Start standing at rest and blend into the motion over 1 s (default: start "

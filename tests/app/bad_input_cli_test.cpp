@@ -97,7 +97,7 @@ TEST(CliBadInput, OptionsOutOfRangeExitOneWithOneLine) {
        "--generations 0 with no --minutes gives the search no budget"},
       {"evolve --rig " + walk() + " --population 4.5" + out, "--population"},
       {"evolve --rig " + walk() + " --seed -1" + out, "--seed"},
-      {"simulate --balance 1e308,0,0,0,0.5", "--balance: value 1 is beyond the limit of +-100"},
+      {"simulate --balance 1e308,0,0,0,0.5", "--balance: cd_sagittal (value 1) must be within +-100"},
       {"simulate --push 1,1e6,0,0", "impulse at most 10000 N s"},
       {"info " + walk() + " --fps 0.001", "--fps"},
   };

@@ -75,9 +75,9 @@ TEST(PipelineTest, TheCommandLineAndTheEditorBuildTheSameProblemAndReachTheSameC
     EXPECT_EQ(coefficients(ed.layout.decodeTarget(point), skeleton),
               coefficients(cli.layout.decodeTarget(point), skeleton))
         << x;
-    const physics::BalanceGains a = ed.layout.decodeGains(point), b = cli.layout.decodeGains(point);
-    EXPECT_EQ(a.cd_sagittal, b.cd_sagittal);
-    EXPECT_EQ(a.torso, b.torso);
+    physics::BalanceGains a = ed.layout.decodeGains(point), b = cli.layout.decodeGains(point);
+    for (int g = 0; g < physics::kBalanceGainCount; ++g)
+      EXPECT_EQ(physics::balanceGain(a, g), physics::balanceGain(b, g)) << physics::balanceGainName(g);
   }
   EXPECT_EQ(ed.layout.startPoint(3), cli.layout.startPoint(3));
   EXPECT_EQ(ed.simulation.seconds, 1.0);

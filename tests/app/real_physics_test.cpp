@@ -2,8 +2,9 @@
 // capture from ../shared/data) evolved on a short budget stays up several times longer than the
 // clip tracked as it is, and walks on. The aim is a 10 s replay without a fall: this
 // walk reached it in 12 generations before the analysis's stride moved by 4% (the seed changed),
-// and does not now (4.3 s after 12 or 24 generations); bench/real_physics_bench.sh measures every
-// real clip on the full budget.
+// and does not now (4.3-4.4 s after 12 generations, with or without the swing lift; outcomes
+// scatter with the seed, docs/physics.md); bench/real_physics_bench.sh measures every real clip
+// on the full budget.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -56,7 +57,8 @@ TEST(RealPhysicsTest, ABandaiWalkEvolvesToStayUpSeveralTimesLonger) {
               r.value("fall_reason", std::string("did not fall")).c_str());
   EXPECT_GT(after, 3.0 * before);
   EXPECT_GT(after, 3.5);
-  EXPECT_GT(r["distance_m"].get<double>(), 1.5 * after);  // walks on: the clip goes 1.8 m/s
+  // Walks on, at the clip's pace: within the 25% of its 1.82 m/s.
+  EXPECT_NEAR(r["speed_m_s"].get<double>(), 1.82, 0.25 * 1.82);
 }
 
 }  // namespace

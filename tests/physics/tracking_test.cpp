@@ -47,6 +47,92 @@ SimulationSettings shortRun(double seconds) {
 // Over a whole run with two pushes nothing but gravity, the ground and the pushes acts on the
 // character: the accumulators are empty before every step, and the momentum's change is exactly
 // gravity's impulse plus the ground's plus the pushes'.
+// Link origins for a pose, by forward kinematics (world metres).
+std::vector<glm::dvec3> linkOrigins(const BodyPlan& plan, const LinkPose& pose) {
+  const std::vector<glm::dquat> rotations = linkWorldRotations(plan, pose);
+  std::vector<glm::dvec3> origins(plan.links.size(), pose.base_position);
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const size_t parent = static_cast<size_t>(plan.links[li].parent);
+    origins[li] = origins[parent] + rotations[parent] * plan.links[li].pivot;
+  }
+  return origins;
+}
+
+std::vector<int> footLinks(const BodyPlan& plan) {
+  std::vector<int> feet;
+  for (size_t li = 0; li < plan.links.size(); ++li)
+    if (plan.links[li].foot) feet.push_back(static_cast<int>(li));
+  return feet;
+}
+
+// The bundled walk's feet swing alternately, half a stride apart, each clear of the ground (a
+// third of its swing's height up) for about a quarter of the stride.
+TEST(TargetFootCycles, TheWalksFeetSwingAlternately) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const std::vector<int> feet = footLinks(biped.plan);
+  ASSERT_EQ(feet.size(), 2u);
+  const std::vector<FootCycle> cycles =
+      targetFootCycles(biped.plan, biped.asset.skeleton, biped.target, feet);
+  const double period = biped.target.period();
+  for (const FootCycle& c : cycles) {
+    ASSERT_GE(c.liftoff_s, 0.0);
+    ASSERT_GE(c.touchdown_s, 0.0);
+    const double swing = std::fmod(c.touchdown_s - c.liftoff_s + period, period);
+    std::printf("swing %.3f to %.3f s: %.0f%% of the %.3f s stride\n", c.liftoff_s, c.touchdown_s,
+                100.0 * swing / period, period);
+    EXPECT_GT(swing, 0.15 * period);
+    EXPECT_LT(swing, 0.45 * period);
+  }
+  const double apart = std::fmod(cycles[1].touchdown_s - cycles[0].touchdown_s + period, period);
+  EXPECT_NEAR(apart, 0.5 * period, 0.08 * period);
+}
+
+// At mid-swing the target the servos get has the swing foot raised by swing_lift x rig size,
+// straight up, with the foot's attitude unchanged; the motion's own target is left as it was.
+TEST(TrackingController, SwingLiftRaisesTheSwingFootStraightUp) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const std::vector<int> feet = footLinks(biped.plan);
+  const FootCycle cycle =
+      targetFootCycles(biped.plan, biped.asset.skeleton, biped.target, feet)[0];
+  const double period = biped.target.period();
+  const double middle =
+      cycle.liftoff_s + 0.5 * std::fmod(cycle.touchdown_s - cycle.liftoff_s + period, period);
+  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
+  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
+  TrackingSettings settings;
+  settings.feedback = false;  // only the lift tells the two targets apart
+  settings.balance.swing_lift = 0.03;
+  auto made = TrackingController::create(*world, biped.asset.skeleton, biped.target, state.pose,
+                                         settings);
+  ASSERT_TRUE(made.ok()) << made.message();
+  TrackingController& controller = *made.value();
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  while (world->time() + 0.5 * world->dt() < middle) {
+    controller.update(*world);
+    world->step(zero);
+  }
+  controller.update(*world);
+  const size_t foot = static_cast<size_t>(feet[0]);
+  const glm::dvec3 lifted = linkOrigins(biped.plan, controller.target())[foot];
+  const glm::dvec3 tracked = linkOrigins(biped.plan, controller.motionTarget())[foot];
+  const glm::dvec3 moved = lifted - tracked;
+  const double asked = 0.03 * biped.plan.size_m;
+  std::printf("asked %.1f cm: up %.2f cm, sideways %.2f cm\n", 100.0 * asked, 100.0 * moved.y,
+              100.0 * glm::length(glm::dvec2(moved.x, moved.z)));
+  EXPECT_NEAR(moved.y, asked, 0.1 * asked);
+  EXPECT_LT(glm::length(glm::dvec2(moved.x, moved.z)), 0.1 * asked);
+  const glm::dquat a = linkWorldRotations(biped.plan, controller.target())[foot];
+  const glm::dquat b = linkWorldRotations(biped.plan, controller.motionTarget())[foot];
+  EXPECT_LT(glm::length(rotationVectorOf(glm::inverse(a) * b)), 1e-9);
+  // The other foot stands: its target is the motion's.
+  const size_t other = static_cast<size_t>(feet[1]);
+  EXPECT_LT(glm::length(linkOrigins(biped.plan, controller.target())[other] -
+                        linkOrigins(biped.plan, controller.motionTarget())[other]),
+            1e-9);
+}
+
 TEST(Simulation, OnlyGravityGroundAndScheduledPushesAct) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());

@@ -53,8 +53,11 @@ TEST(SearchGenome, ThePriorPointIsTheAnalysedMotion) {
       EXPECT_NEAR(decoded.channels[c].terms[t].phase, biped.target.channels[c].terms[t].phase, 1e-12);
     }
   }
-  const physics::BalanceGains gains = layout.decodeGains(x);
-  EXPECT_DOUBLE_EQ(gains.torso, physics::BalanceGains{}.torso);
+  // The start holds the default gains, every one of them.
+  physics::BalanceGains gains = layout.decodeGains(x), defaults;
+  for (int g = 0; g < physics::kBalanceGainCount; ++g)
+    EXPECT_NEAR(physics::balanceGain(gains, g), physics::balanceGain(defaults, g), 1e-12)
+        << physics::balanceGainName(g);
   // A point decodes and encodes back; the ends of the ranges are where the header says.
   std::vector<double> y(x.size());
   for (size_t i = 0; i < y.size(); ++i) y[i] = std::fmod(0.37 * static_cast<double>(i), 1.0);

@@ -344,6 +344,25 @@ int dofCount(JointType type) {
   }
 }
 
+double lowestPoint(const Shape& shape, const glm::dmat4& link_to_world) {
+  const glm::dvec3 c(link_to_world * glm::dvec4(shape.center, 1.0));
+  const glm::dmat3 r = glm::dmat3(link_to_world) * glm::mat3_cast(shape.rotation);
+  switch (shape.type) {
+    case ShapeType::kSphere:
+      return c.y - shape.radius;
+    case ShapeType::kCapsule: {
+      const glm::dvec3 axis = r[1] * shape.half_length;
+      return std::min(c.y + axis.y, c.y - axis.y) - shape.radius;
+    }
+    case ShapeType::kBox: {
+      double y = 0.0;
+      for (int k = 0; k < 3; ++k) y += std::abs(r[k].y) * shape.half_extents[k];
+      return c.y - y;
+    }
+  }
+  return c.y;
+}
+
 glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double angle) {
   switch (link.type) {
     case JointType::kBall:

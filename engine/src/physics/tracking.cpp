@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <string>
 
 #include "sinew/physics/controller.h"
@@ -36,7 +38,153 @@ glm::dquat coordinateFor(const Link& link, const glm::dquat& parent_world,
   return q;
 }
 
+// World transforms of every link for a pose (links), by forward kinematics from the base.
+void linkTransformsOf(const BodyPlan& plan, const LinkPose& pose, std::vector<glm::dmat4>& out) {
+  const std::vector<glm::dquat> rotations = linkWorldRotations(plan, pose);
+  out.resize(plan.links.size());
+  std::vector<glm::dvec3> origins(plan.links.size(), pose.base_position);
+  for (size_t li = 0; li < plan.links.size(); ++li) {
+    const Link& link = plan.links[li];
+    if (li > 0) {
+      const size_t parent = static_cast<size_t>(link.parent);
+      origins[li] = origins[parent] + rotations[parent] * link.pivot;
+    }
+    out[li] = glm::mat4_cast(rotations[li]);
+    out[li][3] = glm::dvec4(origins[li], 1.0);
+  }
+}
+
+// The samples (of the cyclic series h) at which h rises above and comes back within `eps` of
+// `ground` either side of its maximum; {-1, -1} if it never rises above that.
+std::pair<int, int> swingOf(const std::vector<double>& h, double ground, double eps) {
+  const size_t n = h.size();
+  const size_t top = static_cast<size_t>(std::max_element(h.begin(), h.end()) - h.begin());
+  if (h[top] - ground <= eps) return {-1, -1};
+  int down = -1, up = -1;
+  for (size_t k = 1; k <= n && down < 0; ++k)
+    if (h[(top + k) % n] <= ground + eps) down = static_cast<int>((top + k) % n);
+  for (size_t k = 1; k <= n && up < 0; ++k)
+    if (h[(top + n - k) % n] <= ground + eps) up = static_cast<int>((top + n - k + 1) % n);
+  return {up, down};
+}
+
+// Rotation by the rotation vector v.
+glm::dquat rotationBy(const glm::dvec3& v) {
+  const double angle = glm::length(v);
+  return angle > 1e-12 ? glm::angleAxis(angle, v / angle) : glm::dquat(1.0, 0.0, 0.0, 0.0);
+}
+
+// One damped least-squares step of liftFoot.
+void liftFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
+              double lift) {
+  std::vector<glm::dmat4> frames;
+  linkTransformsOf(plan, pose, frames);
+  const glm::dvec3 ankle(frames[static_cast<size_t>(foot)][3]);
+  struct Column {
+    size_t link;
+    glm::dvec3 axis;  // world
+    glm::dvec3 moves;  // the pivot's velocity per unit turn about axis
+  };
+  std::vector<Column> columns;
+  for (int li : leg) {
+    const Link& link = plan.links[static_cast<size_t>(li)];
+    const glm::dmat4& frame = frames[static_cast<size_t>(li)];
+    const glm::dvec3 arm = ankle - glm::dvec3(frame[3]);
+    if (link.type == JointType::kBall) {
+      for (int a = 0; a < 3; ++a) {
+        glm::dvec3 axis(0.0);
+        axis[a] = 1.0;
+        columns.push_back({static_cast<size_t>(li), axis, glm::cross(axis, arm)});
+      }
+    } else if (link.type == JointType::kHinge) {
+      const glm::dvec3 axis = glm::normalize(glm::dmat3(frame) * link.hinge_axis);
+      columns.push_back({static_cast<size_t>(li), axis, glm::cross(axis, arm)});
+    }
+  }
+  glm::dmat3 jjt(0.0);
+  for (const Column& c : columns) jjt += glm::outerProduct(c.moves, c.moves);
+  const double damping = 0.02 * plan.size_m;
+  const glm::dvec3 y =
+      glm::inverse(jjt + glm::dmat3(damping * damping)) * glm::dvec3(0.0, lift, 0.0);
+  // Each leg link turns by its columns' share, its children with it; the foot stays as it was.
+  const std::vector<glm::dquat> world = linkWorldRotations(plan, pose);
+  glm::dquat turned(1.0, 0.0, 0.0, 0.0);  // what the links above have turned by, world
+  glm::dquat parent_new = world[static_cast<size_t>(plan.links[static_cast<size_t>(leg.front())].parent)];
+  for (int li : leg) {
+    const size_t l = static_cast<size_t>(li);
+    glm::dvec3 turn(0.0);
+    double hinge = 0.0;
+    for (const Column& c : columns)
+      if (c.link == l) {
+        turn += glm::dot(c.moves, y) * c.axis;
+        hinge += glm::dot(c.moves, y);
+      }
+    turned = glm::normalize(turned * rotationBy(turn));
+    const Link& link = plan.links[l];
+    const glm::dquat link_new = glm::normalize(turned * world[l]);
+    if (link.type == JointType::kBall) pose.rotations[l] = coordinateFor(link, parent_new, link_new);
+    else if (link.type == JointType::kHinge) pose.angles[l] += hinge;
+    parent_new = link_new;
+  }
+  const Link& foot_link = plan.links[static_cast<size_t>(foot)];
+  if (foot_link.type == JointType::kBall)
+    pose.rotations[static_cast<size_t>(foot)] =
+        coordinateFor(foot_link, parent_new, world[static_cast<size_t>(foot)]);
+}
+
+// Raises `foot`'s pivot by `lift` metres (world up) in `pose` by two damped least-squares steps
+// over the links of `leg` (top to bottom, the foot's parent last); the foot keeps its attitude.
+void liftFoot(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
+              double lift) {
+  const auto pivotHeight = [&] {
+    std::vector<glm::dmat4> frames;
+    linkTransformsOf(plan, pose, frames);
+    return frames[static_cast<size_t>(foot)][3].y;
+  };
+  const double goal = pivotHeight() + lift;
+  liftFootStep(plan, pose, leg, foot, lift);
+  liftFootStep(plan, pose, leg, foot, goal - pivotHeight());
+}
+
 }  // namespace
+
+constexpr double kSwingShare = 0.15;  // of a swing's height: where it starts and ends
+
+std::vector<FootCycle> targetFootCycles(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                        const spectral::TargetMotion& target,
+                                        const std::vector<int>& feet) {
+  constexpr int kSamples = 128;
+  const double period = target.period();
+  const size_t joints = static_cast<size_t>(skeleton.jointCount());
+  std::vector<glm::dquat> rotations(joints);
+  std::vector<glm::dvec3> translations(joints);
+  std::vector<glm::dmat4> transforms;
+  std::vector<std::vector<double>> lowest(feet.size(), std::vector<double>(kSamples));
+  for (int k = 0; k < kSamples; ++k) {
+    target.pose(period * k / kSamples, rotations, translations);
+    linkTransformsOf(plan, linkPoseFromSkeleton(plan, skeleton, rotations, translations), transforms);
+    for (size_t f = 0; f < feet.size(); ++f) {
+      const size_t li = static_cast<size_t>(feet[f]);
+      lowest[f][static_cast<size_t>(k)] = lowestPoint(plan.links[li].shape, transforms[li]);
+    }
+  }
+  std::vector<FootCycle> cycles(feet.size());
+  for (size_t f = 0; f < feet.size(); ++f) {
+    // The ground: the lowest quarter's top, a standing foot (a rigid sole's toe dips below it
+    // for a moment at toe-off: 4 cm on the bundled walk, so not the lowest). A swing starts and
+    // ends 15% of its height above it (a third keeps only its middle, and the lift then misses
+    // the early swing, where a Bandai walk's toe scuffs).
+    std::vector<double> sorted = lowest[f];
+    std::nth_element(sorted.begin(), sorted.begin() + kSamples / 4, sorted.end());
+    const double ground = sorted[kSamples / 4];
+    const double top = *std::max_element(lowest[f].begin(), lowest[f].end());
+    if (top - ground < 0.01 * plan.size_m) continue;
+    const auto [up, down] = swingOf(lowest[f], ground, kSwingShare * (top - ground));
+    if (up < 0 || down < 0) continue;
+    cycles[f] = {period * up / kSamples, period * down / kSamples};
+  }
+  return cycles;
+}
 
 FourierTargets::FourierTargets(const spectral::TargetMotion& target)
     : omega0_(target.omega0),
@@ -87,6 +235,26 @@ void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations) {
                        : base_[j];
 }
 
+const char* balanceGainName(int i) {
+  static const char* const kNames[kBalanceGainCount] = {
+      "cd_sagittal", "cv_sagittal",   "cd_coronal",    "cv_coronal",
+      "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift"};
+  return kNames[std::clamp(i, 0, kBalanceGainCount - 1)];
+}
+
+double& balanceGain(BalanceGains& g, int i) {
+  double* const fields[kBalanceGainCount] = {&g.cd_sagittal, &g.cv_sagittal,   &g.cd_coronal,
+                                             &g.cv_coronal,  &g.torso,         &g.ankle_sagittal,
+                                             &g.ankle_coronal, &g.swing_lift};
+  return *fields[std::clamp(i, 0, kBalanceGainCount - 1)];
+}
+
+bool balanceGainIsShare(int i) { return i == 4 || i == 7; }
+
+double balanceGainLimit(int i, double signed_limit) {
+  return i == 4 ? 1.0 : (i == 7 ? 0.1 : signed_limit);
+}
+
 Status TrackingSettings::validate() const {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!(positive(servo_rate) && servo_rate <= 1.0)) return Status::error("servo_rate must be in (0, 1]");
@@ -94,12 +262,15 @@ Status TrackingSettings::validate() const {
   if (!positive(limb_torque_scale)) return Status::error("limb_torque_scale must be > 0");
   if (!positive(gravity_m_s2)) return Status::error("gravity_m_s2 must be > 0");
   if (!(std::isfinite(ramp_s) && ramp_s >= 0.0)) return Status::error("ramp_s must be >= 0");
-  const BalanceGains& b = balance;
-  for (double g : {b.cd_sagittal, b.cv_sagittal, b.cd_coronal, b.cv_coronal})
-    if (!std::isfinite(g))
-      return Status::error("balance gains (cd_sagittal, cv_sagittal, cd_coronal, cv_coronal) must be finite");
-  if (!(std::isfinite(b.torso) && b.torso >= 0.0 && b.torso <= 1.0))
-    return Status::error("balance.torso must be in [0, 1]");
+  BalanceGains b = balance;
+  for (int i = 0; i < kBalanceGainCount; ++i) {
+    const double g = balanceGain(b, i);
+    const double limit = balanceGainLimit(i, std::numeric_limits<double>::max());
+    if (!(std::isfinite(g) && std::abs(g) <= limit && (g >= 0.0 || !balanceGainIsShare(i))))
+      return Status::error(std::string("balance.") + balanceGainName(i) +
+                           (balanceGainIsShare(i) ? " must be in [0, " + std::to_string(limit) + "]"
+                                                  : " must be finite"));
+  }
   return Status();
 }
 
@@ -213,7 +384,33 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
   c->forward_local_ = glm::inverse(standing_world[static_cast<size_t>(c->pelvis_)]) * glm::normalize(forward);
   c->target_ = standing;
   c->motion_ = standing;
+  c->cycles_ = targetFootCycles(plan, skeleton, target, c->feet_);
+  // Each foot's leg: its ancestors below the first link that also carries another foot.
+  for (int foot : c->feet_) {
+    std::vector<int> leg;
+    for (int li = plan.links[static_cast<size_t>(foot)].parent; li > 0;
+         li = plan.links[static_cast<size_t>(li)].parent) {
+      bool shared = false;
+      for (int other : c->feet_) shared = shared || (other != foot && isAncestorLink(plan, li, other));
+      if (shared) break;
+      leg.insert(leg.begin(), li);
+    }
+    c->legs_.push_back(std::move(leg));
+  }
   return c;
+}
+
+void TrackingController::liftSwingFeet(double time) {
+  const double period = 2.0 * std::numbers::pi / fourier_->omega0();
+  for (size_t f = 0; f < feet_.size(); ++f) {
+    const FootCycle& cycle = cycles_[f];
+    if (cycle.liftoff_s < 0.0 || legs_[f].empty()) continue;
+    const double swing = std::fmod(cycle.touchdown_s - cycle.liftoff_s + period, period);
+    const double into = std::fmod(std::fmod(time - cycle.liftoff_s, period) + period, period);
+    if (swing <= 0.0 || into >= swing) continue;
+    const double bump = std::pow(std::sin(std::numbers::pi * into / swing), 2.0);
+    liftFoot(*plan_, target_, legs_[f], feet_[f], settings_.balance.swing_lift * plan_->size_m * bump);
+  }
 }
 
 void TrackingController::update(World& world) {
@@ -232,6 +429,7 @@ void TrackingController::update(World& world) {
     motion_.base_rotation = glm::slerp(standing_.base_rotation, motion_.base_rotation, w);
   }
   target_ = motion_;
+  if (settings_.balance.swing_lift > 0.0) liftSwingFeet(t);
   stance_ = -1;
   if (settings_.feedback && balance_) {
     // The target's own centre of mass and ankles (forward kinematics of the motion's pose).
@@ -293,26 +491,14 @@ void TrackingController::applyFeedback(const World& world) {
       yaw(headingOf(pelvis_now, forward_local_)) *
       glm::inverse(yaw(headingOf(pelvis_target, forward_local_))) * pelvis_target);
 
-  // Stance hip: hold the pelvis.
+  // The centre of mass's offset from the stance foot and its velocity, and the target motion's
+  // own at this moment, in each one's heading frame: x to the side (left), z forward.
   const BalanceGains& gains = settings_.balance;
-  const size_t stance_hip = static_cast<size_t>(hips_[static_cast<size_t>(stance)]);
-  const Link& stance_link = plan.links[stance_hip];
-  const glm::dquat held =
-      coordinateFor(stance_link, pelvis_wanted, rotationOf(static_cast<int>(stance_hip)));
-  glm::dquat blended = glm::slerp(target_.rotations[stance_hip], held, gains.torso);
-  target_.rotations[stance_hip] = glm::normalize(blended);
-
-  if (!swinging) return;
-  // Swing hip: its target relative to the desired pelvis, turned so the foot lands where it
-  // catches the centre of mass: by how far the centre of mass's offset from the stance foot and
-  // its velocity differ from the target motion's own at this moment (the target already swings
-  // the leg for its nominal gait).
   const double heading_now = headingOf(pelvis_now, forward_local_);
   const double heading_target = headingOf(pelvis_target, forward_local_);
   const glm::dvec3 com = world.centreOfMass();
   const glm::dvec3 velocity = world.linearMomentum() / world.totalMass();
   const glm::dvec3 ankle(transforms[static_cast<size_t>(feet_[static_cast<size_t>(stance)])][3]);
-  // In each one's own heading frame: x to the side (left), z forward.
   const glm::dvec3 d = glm::inverse(yaw(heading_now)) * (com - ankle);
   const glm::dvec3 v = glm::inverse(yaw(heading_now)) * velocity;
   const glm::dvec3 d_ref =
@@ -323,6 +509,35 @@ void TrackingController::applyFeedback(const World& world) {
   const double coronal = gains.cd_coronal * (d.x - d_ref.x) + gains.cv_coronal * (v.x - v_ref.x);
   const glm::dvec3 forward = yaw(heading_now) * glm::dvec3(0.0, 0.0, 1.0);
   const glm::dvec3 side = glm::cross(kUp, forward);  // the character's left
+
+  // Stance hip: hold the pelvis.
+  const size_t stance_hip = static_cast<size_t>(hips_[static_cast<size_t>(stance)]);
+  const Link& stance_link = plan.links[stance_hip];
+  const glm::dquat held =
+      coordinateFor(stance_link, pelvis_wanted, rotationOf(static_cast<int>(stance_hip)));
+  glm::dquat blended = glm::slerp(target_.rotations[stance_hip], held, gains.torso);
+  target_.rotations[stance_hip] = glm::normalize(blended);
+
+  // Stance ankle (the ankle strategy of Lee, Kim and Lee 2010): the planted foot's target turned
+  // against the centre of mass's velocity error, so the foot tilts the body back towards the
+  // target's velocity.
+  if (gains.ankle_sagittal != 0.0 || gains.ankle_coronal != 0.0) {
+    const size_t foot = static_cast<size_t>(feet_[static_cast<size_t>(stance)]);
+    const Link& foot_link = plan.links[foot];
+    if (foot_link.type == JointType::kBall) {
+      const std::vector<glm::dquat> wanted = linkWorldRotations(plan, target_);
+      const glm::dquat turn =
+          glm::normalize(glm::angleAxis(gains.ankle_sagittal * (v.z - v_ref.z), side) *
+                         glm::angleAxis(gains.ankle_coronal * (v.x - v_ref.x), forward));
+      target_.rotations[foot] = coordinateFor(
+          foot_link, wanted[static_cast<size_t>(foot_link.parent)], glm::normalize(turn * wanted[foot]));
+    }
+  }
+
+  if (!swinging) return;
+  // Swing hip: its target relative to the desired pelvis, turned so the foot lands where it
+  // catches the centre of mass: by how far the offset and velocity differ from the target's (the
+  // target already swings the leg for its nominal gait).
   // Turning the leg about -side by a positive angle moves the foot forward; about +forward, to
   // the left.
   const glm::dquat correction = glm::normalize(glm::angleAxis(sagittal, -side) *

@@ -47,25 +47,6 @@ glm::dquat toGlm(const btQuaternion& q) {
   return glm::dquat(q.w(), q.x(), q.y(), q.z());
 }
 
-double lowestPoint(const Shape& shape, const glm::dmat4& link_to_world) {
-  const glm::dvec3 c(link_to_world * glm::dvec4(shape.center, 1.0));
-  const glm::dmat3 r = glm::dmat3(link_to_world) * glm::mat3_cast(shape.rotation);
-  switch (shape.type) {
-    case ShapeType::kSphere:
-      return c.y - shape.radius;
-    case ShapeType::kCapsule: {
-      const glm::dvec3 axis = r[1] * shape.half_length;
-      return std::min(c.y + axis.y, c.y - axis.y) - shape.radius;
-    }
-    case ShapeType::kBox: {
-      double y = 0.0;
-      for (int k = 0; k < 3; ++k) y += std::abs(r[k].y) * shape.half_extents[k];
-      return c.y - y;
-    }
-  }
-  return c.y;
-}
-
 double radians(double deg) { return deg * std::numbers::pi / 180.0; }
 
 // Rough terrain: one height per grid node, uniform in [0, amplitude] from the seed (the top 53

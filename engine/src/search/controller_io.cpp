@@ -12,6 +12,17 @@
 
 namespace sinew::search {
 
+namespace {
+
+nlohmann::json balanceJson(physics::BalanceGains gains) {
+  nlohmann::json json = nlohmann::json::object();
+  for (int i = 0; i < physics::kBalanceGainCount; ++i)
+    json[physics::balanceGainName(i)] = physics::balanceGain(gains, i);
+  return json;
+}
+
+}  // namespace
+
 Status saveController(const std::filesystem::path& path, const ControllerFile& c,
                       const motion::Skeleton& skeleton) {
   const nlohmann::json json = {
@@ -20,12 +31,7 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
       {"rig", toUtf8(c.rig)},  // paths are bytes; JSON text is UTF-8
       {"clip", toUtf8(c.clip)},
       {"target", nlohmann::json::parse(spectral::targetToJson(c.target, skeleton))},
-      {"balance",
-       {{"cd_sagittal", c.balance.cd_sagittal},
-        {"cv_sagittal", c.balance.cv_sagittal},
-        {"cd_coronal", c.balance.cd_coronal},
-        {"cv_coronal", c.balance.cv_coronal},
-        {"torso", c.balance.torso}}},
+      {"balance", balanceJson(c.balance)},
       {"settings",
        {{"window_s", c.window_s},
         {"terrain", c.terrain},
@@ -50,24 +56,32 @@ void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*
   }
 }
 
+// The first five gains are required; the ankle gains and swing_lift came later: a file without
+// them was made without them, and replays so (0).
 Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
   using namespace state_json;
   Result<const nlohmann::json*> b = field(json, "balance", name);
   if (!b.ok()) return b.status();
   const std::string where = name + ": balance";
-  unknownKeys(*b.value(), {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso"},
+  unknownKeys(*b.value(),
+              {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso", "ankle_sagittal",
+               "ankle_coronal", "swing_lift"},
               where, c.warnings);
-  double* gains[4] = {&c.balance.cd_sagittal, &c.balance.cv_sagittal, &c.balance.cd_coronal,
-                      &c.balance.cv_coronal};
-  const char* keys[4] = {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal"};
-  for (int i = 0; i < 4; ++i) {
-    if (Status s = readNumber(*b.value(), keys[i], where, *gains[i]); !s.ok()) return s;
-    if (!(std::abs(*gains[i]) <= kMaxBalanceGain))
-      return Status::error(where + ": " + keys[i] + ": beyond the limit of +-100");
+  for (int i = 0; i < physics::kBalanceGainCount; ++i) {
+    const char* key = physics::balanceGainName(i);
+    double& gain = physics::balanceGain(c.balance, i);
+    if (i >= 5 && b.value()->is_object() && !b.value()->contains(key)) {
+      gain = 0.0;
+      continue;
+    }
+    if (Status s = readNumber(*b.value(), key, where, gain); !s.ok()) return s;
+    const double limit = physics::balanceGainLimit(i, kMaxBalanceGain);
+    if (physics::balanceGainIsShare(i) && !(gain >= 0.0 && gain <= limit))
+      return Status::error(where + ": " + key + ": expected a share from 0 to " +
+                           (limit == 1.0 ? std::string("1") : std::string("0.1")));
+    if (!physics::balanceGainIsShare(i) && !(std::abs(gain) <= limit))
+      return Status::error(where + ": " + key + ": beyond the limit of +-100");
   }
-  if (Status s = readNumber(*b.value(), "torso", where, c.balance.torso); !s.ok()) return s;
-  if (!(c.balance.torso >= 0.0 && c.balance.torso <= 1.0))
-    return Status::error(where + ": torso: expected a share from 0 to 1");
   return {};
 }
 

@@ -17,23 +17,14 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kAmplitudeFloor = 1e-4;  // radians: below it a geometric range collapses
-const char* const kGainNames[5] = {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal",
-                                   "torso"};
 const char* const kAxes = "xyz";
+constexpr double kSwingLiftRange = 0.05;  // swing_lift searched in [0, this] (per rig size)
 
-double* gainField(physics::BalanceGains& g, int i) {
-  switch (i) {
-    case 0:
-      return &g.cd_sagittal;
-    case 1:
-      return &g.cv_sagittal;
-    case 2:
-      return &g.cd_coronal;
-    case 3:
-      return &g.cv_coronal;
-    default:
-      return &g.torso;
-  }
+// The search range of balance gain i.
+std::pair<double, double> gainRange(int i, double gain_range) {
+  if (i == 7) return {0.0, kSwingLiftRange};
+  if (physics::balanceGainIsShare(i)) return {0.0, physics::balanceGainLimit(i, gain_range)};
+  return {-gain_range, gain_range};
 }
 
 }  // namespace
@@ -111,12 +102,11 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
   else
     add(Kind::kOmega, -1, -1, -1, seed.omega0 * (1.0 - settings.omega_range),
         seed.omega0 * (1.0 + settings.omega_range), seed.omega0, "omega0");
-  const physics::BalanceGains defaults;
-  physics::BalanceGains copy = defaults;
-  for (int i = 0; i < 5; ++i) {
-    const double lo = i == 4 ? 0.0 : -settings.gain_range;
-    const double hi = i == 4 ? 1.0 : settings.gain_range;
-    add(Kind::kGain, -1, -1, i, lo, hi, *gainField(copy, i), std::string("balance.") + kGainNames[i]);
+  physics::BalanceGains defaults;
+  for (int i = 0; i < physics::kBalanceGainCount; ++i) {
+    const auto [lo, hi] = gainRange(i, settings.gain_range);
+    add(Kind::kGain, -1, -1, i, lo, hi, physics::balanceGain(defaults, i),
+        std::string("balance.") + physics::balanceGainName(i));
   }
   return g;
 }
@@ -187,7 +177,7 @@ physics::BalanceGains GenomeLayout::decodeGains(std::span<const double> x) const
   SINEW_ASSERT(x.size() == lo_.size(), "decodeGains: a point of this layout's size");
   physics::BalanceGains gains;
   for (size_t i = 0; i < genes_.size(); ++i)
-    if (genes_[i].kind == Kind::kGain) *gainField(gains, genes_[i].gain) = value(i, x[i]);
+    if (genes_[i].kind == Kind::kGain) physics::balanceGain(gains, genes_[i].gain) = value(i, x[i]);
   return gains;
 }
 
@@ -212,7 +202,7 @@ std::vector<double> GenomeLayout::encode(const spectral::TargetMotion& target,
         v = target.omega0;
         break;
       case Kind::kGain:
-        v = *gainField(copy, g.gain);
+        v = physics::balanceGain(copy, g.gain);
         break;
     }
     x[i] = coordinate(i, v);

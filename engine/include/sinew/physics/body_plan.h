@@ -179,6 +179,9 @@ LinkPose standingPose(const BodyPlan& plan, const motion::Skeleton& skeleton);
 // Rotation of a link's frame relative to its parent's for a joint coordinate.
 glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double angle);
 
+// The height (world y) of a shape's lowest point when its link is at `link_to_world`, metres.
+double lowestPoint(const Shape& shape, const glm::dmat4& link_to_world);
+
 // The coordinates a ball joint's range bounds: log(ball_center^-1 q), radians (|v| <= pi).
 // Inside the range when ball_lower <= v <= ball_upper on every axis.
 glm::dvec3 ballRangeCoordinates(const Link& link, const glm::dquat& q);

@@ -16,6 +16,12 @@
 // lands where it catches the body; and the stance hip's target is replaced, by the share `torso`, with the
 // rotation that brings the pelvis to the target's attitude (its tilt, at the pelvis's present
 // heading). Both hips' targets are set relative to the desired pelvis, not the present one.
+//
+// Swing clearance: while the target swings a foot (from its lift-off to its touchdown), the
+// foot's target is raised by swing_lift x rig size x sin^2(pi u), u the share of the swing
+// done: one damped least-squares step over the leg's joints moves the foot's pivot straight up,
+// the foot keeps its attitude. A real capture's foot passes a centimetre or two above the ground
+// at mid-swing, within what tracking misses by; a rigid sole that scuffs there trips the body.
 #pragma once
 
 #include <memory>
@@ -47,6 +53,7 @@ class FourierTargets {
   // Local rotations (joints) at time t, as TargetMotion::pose gives them (to 1e-12).
   void evaluate(double t, std::span<glm::dquat> rotations);
   int maxHarmonic() const { return max_n_; }
+  double omega0() const { return omega0_; }
 
  private:
   struct Term {
@@ -70,17 +77,31 @@ class FourierTargets {
   std::vector<char> rotates_;
 };
 
-// SIMBICON gains: what the evolutionary search tunes besides the harmonics.
+// Balance gains: what the evolutionary search tunes besides the harmonics.
 struct BalanceGains {
   // Defaults: the swing terms off and the torso half held, the best of a grid on the bundled walk
   // (docs/physics.md): the target already places the feet for its gait, and the swing terms
-  // shortened that walk at every value tried; the search tunes them per motion.
+  // shortened that walk at every value tried; the search tunes them per motion. The ankle gains
+  // start off (0.3 kept unevolved Bandai walks up 30-60% longer but slowed them, and searches from
+  // it did worse) and the lift at 2% (docs/physics.md).
   double cd_sagittal = 0.0;  // swing-hip turn per metre of centre-of-mass offset, rad/m
   double cv_sagittal = 0.0;  // per m/s of centre-of-mass velocity, rad/(m/s)
   double cd_coronal = 0.0;
   double cv_coronal = 0.0;
   double torso = 0.5;        // share of the stance hip that holds the pelvis's attitude, 0..1
+  double ankle_sagittal = 0.0;  // stance-foot turn per m/s of centre-of-mass velocity error
+  double ankle_coronal = 0.0;   // forward and to the side, rad/(m/s)
+  double swing_lift = 0.02;     // mid-swing lift of a swing foot per rig size, [0, 0.1]
 };
+
+// The gains by index, in the order files and the genome hold them.
+inline constexpr int kBalanceGainCount = 8;
+const char* balanceGainName(int i);  // "cd_sagittal", ..., "swing_lift"
+double& balanceGain(BalanceGains& gains, int i);
+// The largest value gain i may take, and whether it is a share from 0 (torso, swing_lift) rather
+// than signed.
+double balanceGainLimit(int i, double signed_limit);
+bool balanceGainIsShare(int i);
 
 struct TrackingSettings {
   double servo_rate = 0.2;             // World::enableServos rate, (0, 1]
@@ -101,6 +122,12 @@ struct TrackingSettings {
 std::vector<double> jointTorqueLimits(const BodyPlan& plan, double support_scale,
                                       double limb_scale, double gravity_m_s2);
 
+// A foot's swing in a periodic target: seconds within the period, -1 when it never lifts.
+struct FootCycle {
+  double liftoff_s = -1.0;
+  double touchdown_s = -1.0;
+};
+
 class TrackingController {
  public:
   // Enables the world's servos and prepares the targets. `standing`: the pose the ramp starts
@@ -118,9 +145,12 @@ class TrackingController {
   int stanceFoot() const { return stance_; }  // index into the plan's feet (link order), -1: none
   bool balancing() const { return balance_; }  // two feet under a common link: feedback applies
   const std::vector<int>& feet() const { return feet_; }  // foot links
+  // (feet) when the target lifts and lands each foot within its period
+  const std::vector<FootCycle>& footCycles() const { return cycles_; }
 
  private:
   TrackingController() = default;
+  void liftSwingFeet(double time);
   void applyFeedback(const World& world);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
 
@@ -143,7 +173,18 @@ class TrackingController {
   glm::dvec3 reference_velocity_{0.0};      // its velocity, m/s
   std::vector<glm::dvec3> reference_ankles_;  // (feet) the target pose's foot pivots
   bool have_reference_ = false;
+  std::vector<FootCycle> cycles_;     // (feet)
+  std::vector<std::vector<int>> legs_;  // (feet) the links a foot's lift moves, top to bottom
 };
+
+// When each foot of `feet` (links) leaves the ground and comes down again within the target's
+// period: its shape's lowest point rising above, and coming back within, 15% of its swing's
+// height of the ground, either side of the swing's highest point, from the target's kinematics
+// at 128 points a period; the ground is the top of the lowest quarter of that point's heights
+// (the foot standing). -1 for a foot that rises less than 1% of the rig's size.
+std::vector<FootCycle> targetFootCycles(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                        const spectral::TargetMotion& target,
+                                        const std::vector<int>& feet);
 
 // A character's state taken from a target: its pose at time t and its velocities (central
 // differences over 1 ms), so a simulation can start in the motion rather than from rest.
