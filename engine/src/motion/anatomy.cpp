@@ -75,7 +75,9 @@ int upAxisOf(const std::vector<FigurePoint>& points, const std::vector<glm::dvec
   return best_axis;
 }
 
-int commonAncestor(const Skeleton& skeleton, int a, int b) {
+// The deepest joint whose subtree holds both a and b (a itself when b is below it), or kNoParent
+// when they are in different trees.
+int lowestCommonAncestor(const Skeleton& skeleton, int a, int b) {
   while (a != b) {
     if (a > b)
       a = skeleton.parents[a];  // parents come first: step the deeper index up
@@ -150,7 +152,7 @@ FigureMeasure measureFigure(const Skeleton& skeleton, const Clip& clip, int up_a
   for (size_t a = 0; a < grounded.size(); ++a)
     for (size_t b = a + 1; b < grounded.size(); ++b) {
       const int meet =
-          commonAncestor(skeleton, points[grounded[a]].joint, points[grounded[b]].joint);
+          lowestCommonAncestor(skeleton, points[grounded[a]].joint, points[grounded[b]].joint);
       if (meet != kNoParent && joint_height[static_cast<size_t>(meet)] < 0.5 * measure.hip_height)
         group[findRoot(group, static_cast<int>(a))] = findRoot(group, static_cast<int>(b));
     }
@@ -335,13 +337,6 @@ std::vector<int> childCounts(const Skeleton& skeleton) {
   return counts;
 }
 
-int lowestCommonAncestor(const Skeleton& skeleton, int a, int b) {
-  for (int j = a; j != kNoParent; j = skeleton.parents[j]) {
-    if (inSubtree(skeleton, j, b)) return j;
-  }
-  return kNoParent;
-}
-
 // Length along the bones from `ancestor` down to `joint`, metres.
 double boneLength(const Skeleton& skeleton, int ancestor, int joint) {
   double length = 0.0;
@@ -351,17 +346,7 @@ double boneLength(const Skeleton& skeleton, int ancestor, int joint) {
   return length;
 }
 
-// World positions of every joint and End Site, frame by frame.
-struct Poses {
-  int joints = 0;
-  std::vector<glm::dvec3> joint;  // (frames x joints) metres
-  std::vector<glm::dvec3> site;   // (frames x joints) End Site, or the joint when it has none
-
-  const glm::dvec3& at(int frame, const FootPoint& p) const {
-    const size_t n = static_cast<size_t>(frame) * joints + p.joint;
-    return p.end_site ? site[n] : joint[n];
-  }
-};
+}  // namespace
 
 Poses computePoses(const Skeleton& skeleton, const Clip& clip, int frames) {
   Poses poses;
@@ -383,10 +368,11 @@ glm::dvec3 horizontal(const glm::dvec3& v) {
   return {v.x, 0.0, v.z};
 }
 
-// The figure's left for a travel direction (Y up): up x forward.
 glm::dvec3 leftOf(const glm::dvec3& forward) {
   return glm::cross(kUp, forward);
 }
+
+namespace {
 
 // ---------------------------------------------------------------- feet
 

@@ -9,47 +9,15 @@
 namespace sinew::spectral {
 namespace {
 
+using motion::computePoses;
+using motion::horizontal;
+using motion::leftOf;
+using motion::Poses;
+
 constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
 // Below this horizontal speed of the centre of mass the clip runs in place, and the figure's
 // facing replaces the travel direction, m/s.
 constexpr double kInPlaceSpeed = 0.1;
-
-// World positions of every joint and End Site, frame by frame.
-struct Poses {
-  int joints = 0;
-  std::vector<glm::dvec3> joint;  // (frames x joints) metres
-  std::vector<glm::dvec3> site;   // (frames x joints) End Site, or the joint when it has none
-
-  const glm::dvec3& at(int frame, const FootPoint& p) const {
-    const size_t n = static_cast<size_t>(frame) * joints + p.joint;
-    return p.end_site ? site[n] : joint[n];
-  }
-};
-
-Poses computePoses(const motion::Skeleton& skeleton, const motion::Clip& clip, int frames) {
-  Poses poses;
-  poses.joints = skeleton.jointCount();
-  std::vector<glm::dmat4> world(poses.joints);
-  for (int f = 0; f < frames; ++f) {
-    motion::worldTransforms(skeleton, clip, f, world);
-    for (int j = 0; j < poses.joints; ++j) {
-      poses.joint.emplace_back(world[j][3]);
-      poses.site.push_back(skeleton.end_sites[j]
-                               ? glm::dvec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0))
-                               : glm::dvec3(world[j][3]));
-    }
-  }
-  return poses;
-}
-
-glm::dvec3 horizontal(const glm::dvec3& v) {
-  return {v.x, 0.0, v.z};
-}
-
-// The figure's left for a travel direction (Y up): up x forward.
-glm::dvec3 leftOf(const glm::dvec3& forward) {
-  return glm::cross(kUp, forward);
-}
 
 }  // namespace
 
