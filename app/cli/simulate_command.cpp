@@ -72,10 +72,8 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
       {"footfalls", footfalls}};
 }
 
-int runSimulate(const SimulateArgs& args) {
-  if (!args.controller_path.empty() && !args.target_path.empty())
-    return fail("--controller and --target both give the coefficients: choose one");
-  // The flags as the pipeline's settings; the engine makes the target and the body from them.
+// The flags as the pipeline's settings; the engine makes the target and the body from them.
+Result<pipeline::ProjectSettings> settingsFromFlags(const SimulateArgs& args) {
   pipeline::ProjectSettings chosen;
   chosen.rig = args.rig;
   chosen.clip = args.clip;
@@ -84,16 +82,85 @@ int runSimulate(const SimulateArgs& args) {
   chosen.harmonics = args.harmonics;
   chosen.physics.window_s = args.seconds;
   Result<physics::TerrainSettings> terrain = parseTerrain(args.terrain);
-  if (!terrain.ok()) return fail(terrain.message());
+  if (!terrain.ok()) return terrain.status();
   chosen.physics.terrain = terrain.value();
   for (const std::string& text : args.pushes) {
     Result<physics::Push> push = parsePush(text);
-    if (!push.ok()) return fail(push.message());
+    if (!push.ok()) return push.status();
     chosen.physics.pushes.push_back(push.value());
   }
   Result<BodyOverrides> body = args.body.overrides();
-  if (!body.ok()) return fail(body.message());
+  if (!body.ok()) return body.status();
   chosen.physics.body = std::move(body).value();
+  return chosen;
+}
+
+// --balance CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO into the gains.
+Status applyBalanceFlag(const std::vector<double>& balance, physics::BalanceGains& b) {
+  if (balance.size() != 5 && balance.size() != 8)
+    return Status::error(
+        "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO (or "
+        "8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT), got " +
+        std::to_string(balance.size()));
+  for (size_t i = 0; i < balance.size(); ++i) {
+    const int g = static_cast<int>(i);
+    const double v = balance[i];
+    const double limit = physics::balanceGainLimit(g, search::kMaxBalanceGain);
+    const bool share = physics::balanceGainIsShare(g);
+    if (share ? !(v >= 0.0 && v <= limit) : !(std::abs(v) <= limit))
+      return Status::error("--balance: " + std::string(physics::balanceGainName(g)) + " (value " +
+                           std::to_string(i + 1) + ") must be " +
+                           (share ? (limit == 1.0 ? "a share from 0 to 1" : "from 0 to 0.1")
+                                  : "within +-100"));
+    physics::balanceGain(b, g) = v;
+  }
+  return {};
+}
+
+void printReport(const physics::SimulationReport& r) {
+  if (r.diverged)
+    std::printf("diverged at %.2f s: %s; figures up to then\n", r.fall_time_s,
+                r.diverged_reason.c_str());
+  else if (r.fell)
+    std::printf("fell at %.2f s: %s\n", r.fall_time_s, r.fall_reason.c_str());
+  else
+    std::printf("stayed up for %.2f s\n", r.seconds);
+  std::printf(
+      "travelled %.2f m (%.2f m/s); tracking error %.2f deg RMS; energy %.0f J; "
+      "torque^2 %.0f N^2 m^2 s/kg\n",
+      r.distance_m, r.speed_m_s, r.track_err_rad_rms * 57.29577951308232, r.energy_j,
+      r.torque_sq_per_kg);
+  for (size_t f = 0; f < r.feet.size(); ++f)
+    std::printf("  %-16s on the ground %3.0f%% of the time\n", r.feet[f].c_str(),
+                100.0 * r.contact_share[f]);
+  std::printf("  %zu footfalls\n", r.footfalls.size());
+}
+
+// --output (the run on the rig's skeleton) and --json (the figures).
+Status writeOutputs(const SimulateArgs& args, const motion::MotionAsset& asset,
+                    const physics::SimulationReport& r) {
+  if (!args.output.empty()) {
+    if (Status status = motion::exportMotion(args.output, asset, r.motion); !status.ok())
+      return status;
+    std::printf("wrote %s: %d frames at %.0f fps\n", args.output.c_str(), r.motion.frame_count,
+                r.motion.fps());
+  }
+  if (!args.json_path.empty()) {
+    Status status = writeFileAtomically(
+        args.json_path,
+        reportJson(r, args).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    if (!status.ok()) return status;
+    std::printf("wrote %s\n", args.json_path.c_str());
+  }
+  return {};
+}
+
+int runSimulate(const SimulateArgs& args) {
+  if (!args.controller_path.empty() && !args.target_path.empty())
+    return fail("--controller and --target both give the coefficients: choose one");
+  Result<pipeline::ProjectSettings> flags = settingsFromFlags(args);
+  if (!flags.ok()) return fail(flags.message());
+  const pipeline::ProjectSettings& chosen = flags.value();
   Result<LoadedRig> loaded = loadRig(chosen, args.import);
   if (!loaded.ok()) return fail(loaded.message());
   LoadedRig& rig = loaded.value();
@@ -119,27 +186,11 @@ int runSimulate(const SimulateArgs& args) {
     settings.tracking.balance = controller.value().balance;
   }
   if (!args.balance.empty()) {
-    if (args.balance.size() != 5 && args.balance.size() != 8)
-      return fail(
-          "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
-          "(or 8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT), got " +
-          std::to_string(args.balance.size()));
-    physics::BalanceGains& b = settings.tracking.balance;
-    for (size_t i = 0; i < args.balance.size(); ++i) {
-      const int g = static_cast<int>(i);
-      const double v = args.balance[i];
-      const double limit = physics::balanceGainLimit(g, search::kMaxBalanceGain);
-      if (physics::balanceGainIsShare(g) ? !(v >= 0.0 && v <= limit) : !(std::abs(v) <= limit))
-        return fail("--balance: " + std::string(physics::balanceGainName(g)) + " (value " +
-                    std::to_string(i + 1) + ") must be " +
-                    (physics::balanceGainIsShare(g) ? (limit == 1.0 ? std::string("a share from 0 to 1") : std::string("from 0 to 0.1"))
-                                                    : std::string("within +-100")));
-      physics::balanceGain(b, g) = v;
-    }
+    if (Status status = applyBalanceFlag(args.balance, settings.tracking.balance); !status.ok())
+      return fail(status.message());
   }
   settings.start_moving = !args.from_standing;
   const physics::BodyPlan& plan = built.value();
-
   std::printf(
       "%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
       "%.1f s on %s terrain, balance feedback %s\n",
@@ -148,37 +199,9 @@ int runSimulate(const SimulateArgs& args) {
       args.no_feedback ? "off" : "on");
   Result<physics::SimulationReport> run = physics::simulate(plan, skeleton, target, settings);
   if (!run.ok()) return fail(run.message());
-  const physics::SimulationReport& r = run.value();
-  if (r.diverged)
-    std::printf("diverged at %.2f s: %s; figures up to then\n", r.fall_time_s,
-                r.diverged_reason.c_str());
-  else if (r.fell)
-    std::printf("fell at %.2f s: %s\n", r.fall_time_s, r.fall_reason.c_str());
-  else
-    std::printf("stayed up for %.2f s\n", r.seconds);
-  std::printf(
-      "travelled %.2f m (%.2f m/s); tracking error %.2f deg RMS; energy %.0f J; "
-      "torque^2 %.0f N^2 m^2 s/kg\n",
-      r.distance_m, r.speed_m_s, r.track_err_rad_rms * 57.29577951308232, r.energy_j,
-      r.torque_sq_per_kg);
-  for (size_t f = 0; f < r.feet.size(); ++f)
-    std::printf("  %-16s on the ground %3.0f%% of the time\n", r.feet[f].c_str(),
-                100.0 * r.contact_share[f]);
-  std::printf("  %zu footfalls\n", r.footfalls.size());
-
-  if (!args.output.empty()) {
-    Status status = motion::exportMotion(args.output, rig.asset, r.motion);
-    if (!status.ok()) return fail(status.message());
-    std::printf("wrote %s: %d frames at %.0f fps\n", args.output.c_str(), r.motion.frame_count,
-                r.motion.fps());
-  }
-  if (!args.json_path.empty()) {
-    Status status = writeFileAtomically(
-        args.json_path,
-        reportJson(r, args).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    if (!status.ok()) return fail(status.message());
-    std::printf("wrote %s\n", args.json_path.c_str());
-  }
+  printReport(run.value());
+  if (Status status = writeOutputs(args, rig.asset, run.value()); !status.ok())
+    return fail(status.message());
   return 0;
 }
 

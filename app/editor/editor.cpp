@@ -342,45 +342,38 @@ int runHeadlessEvolve(const EditorOptions& options) {
   return 0;
 }
 
-int runEditor(const EditorOptions& options) {
-  if (!options.export_dir.empty()) return runHeadlessEvolve(options);
-  glfwSetErrorCallback(onGlfwError);
-  if (glfwInit() == GLFW_FALSE) {
-    std::cerr << "sinew edit: cannot open a window (no display? set DISPLAY or run under "
-                 "xvfb-run)\n";
-    return 1;
-  }
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// ---------------------------------------------------------------- the platform window
+
+// What the editor remembers between runs; `error` says why the defaults are used.
+Preferences loadEditorPreferences(const std::filesystem::path& config, std::string& error) {
+  if (config.empty()) return {};
+  Result<Preferences> loaded = loadPreferences(config / kPreferencesFile);
+  if (loaded.ok()) return loaded.value();
+  error = loaded.message();
+  return {};
+}
+
+// A GLFW window with an OpenGL 3.3 core context and ImGui on it, its events queued in `events`;
+// nullptr (and GLFW terminated) when it cannot be made. Precondition: glfwInit succeeded.
+GLFWwindow* openWindow(int width, int height, bool headless, WindowEvents& events) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   // No multisampling: on Mesa's software rasteriser 4x MSAA cost 3x the frame time (13 fps).
   glfwWindowHint(GLFW_SAMPLES, 0);
-  // What the editor remembers between runs (not in headless runs: screenshots and tests see the
-  // defaults and leave the user's files alone).
-  const bool headless = !options.screenshot.empty() || options.bench;
-  const std::filesystem::path config = headless ? std::filesystem::path() : configDir();
-  Preferences preferences;
-  std::string preferences_error;
-  if (!config.empty()) {
-    Result<Preferences> loaded = loadPreferences(config / kPreferencesFile);
-    if (loaded.ok()) {
-      preferences = loaded.value();
-    } else {
-      preferences_error = loaded.message();
-    }
-  }
-  const int width = headless ? kWindowWidth : preferences.window_width;
-  const int height = headless ? kWindowHeight : preferences.window_height;
   GLFWwindow* window = glfwCreateWindow(width, height, "Sinew", nullptr, nullptr);
   if (window == nullptr) {
     std::cerr << "sinew edit: cannot create an OpenGL 3.3 core window\n";
     glfwTerminate();
-    return 1;
+    return nullptr;
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(headless ? 0 : 1);
-  WindowEvents events;
   glfwSetWindowUserPointer(window, &events);
   glfwSetDropCallback(window, onDrop);
   glfwSetKeyCallback(window, onKey);
@@ -391,311 +384,437 @@ int runEditor(const EditorOptions& options) {
   applyTheme();
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
+  return window;
+}
 
-  int exit_code = 0;
-  {
-    EditorState state;
-    FilesPanelState files_panel;
-    SpectrumPanelState spectrum_panel;
-    StylePanelState style_panel;
-    int right_tab = 0;                // Spectrum or Style
-    bool style_shot_pending = false;  // --panel-shots: the Style tab's picture is next
-    OrbitCamera camera;
-    ViewportDrag drag;
-    FrameTimes frame_times;
-    Renderer renderer;
-    state.log.info(std::string("OpenGL ") + reinterpret_cast<const char*>(glGetString(GL_VERSION)) +
-                   " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
-    if (Status status = renderer.init(options.shader_dir); !status.ok()) {
-      state.log.error(status.message());
-    }
-    state.recent_files = preferences.recent_files;
-    if (!preferences_error.empty()) state.log.warning(preferences_error + " (using the defaults)");
-    // A recovery file left behind means the last session ended without closing: keep it aside
-    // (this session autosaves over the usual name) and offer it at the top of Recent.
-    const std::filesystem::path recovery = config.empty() ? config : config / kRecoveryFile;
-    if (!recovery.empty() && std::filesystem::exists(recovery)) {
-      const std::filesystem::path kept = config / "recovered.sinew.json";
-      std::error_code ec;
-      std::filesystem::rename(recovery, kept, ec);
-      if (!ec) {
-        rememberRecent(state, kept.string());
-        state.log.warning("the last session ended with unsaved changes; they are in " +
-                          kept.string() + " (first in Recent)");
-      }
-    }
-    state.view.shadows = options.shadows;
-    state.view.show_mesh = options.mesh;
-    if (!options.file.empty()) {
-      files_panel.path = options.file;
-      files_panel.animation = options.animation;
-      if (!openAny(state, options.file, options.animation)) startUntitled(state);
-    }
-    state.evolution.settings.shown = options.shown;
-    if (options.bench) state.evolution.settings.search.minutes = options.evolve_minutes;
-    if (options.evolve) {
-      state.evolution.settings.search.minutes = options.evolve_minutes;
-      startEvolution(state);
-    }
-    if (state.analysis)
-      spectrum_panel.global_k = state.analysis->joint_k.empty() ? 5 : state.analysis->joint_k[0];
-
-    using Clock = std::chrono::steady_clock;
-    const Clock::time_point start = Clock::now();
-    Clock::time_point last = start;
-    Clock::time_point last_autosave = start;
-    app::Project autosaved = state.saved;
-    bool ask_to_quit = false;
-    bool quit_confirmed = false;
-    enum class BenchPhase { kIdle, kWaiting, kSearching };
-    struct {
-      BenchPhase phase = BenchPhase::kIdle;
-      double idle_median = 0.0, idle_p95 = 0.0;
-    } bench;
-    int frame = 0;
-    while (true) {
-      if (glfwWindowShouldClose(window)) {
-        // Unsaved changes: ask first (never in headless runs).
-        if (headless || quit_confirmed || !hasUnsavedChanges(state)) break;
-        glfwSetWindowShouldClose(window, GLFW_FALSE);
-        ask_to_quit = true;
-      }
-      glfwPollEvents();
-      const Clock::time_point now = Clock::now();
-      const double dt =
-          headless ? kScreenshotDt : std::chrono::duration<double>(now - last).count();
-      if (frame > 0) frame_times.add(std::chrono::duration<double>(now - last).count());
-      last = now;
-      state.log.clock_s = std::chrono::duration<double>(now - start).count();
-
-      for (const std::string& path : events.dropped) {
-        if (openAny(state, path)) {
-          files_panel.path = path;
-          files_panel.save_path.clear();
-        }
-      }
-      events.dropped.clear();
-      advancePlayback(state, std::min(dt, 0.25));
-      const bool unsaved = hasUnsavedChanges(state);
-      std::string title = "Sinew";
-      if (!state.project_path.empty()) title += " - " + state.project_path.filename().string();
-      if (!state.file_name.empty()) title += " - " + state.file_name;
-      if (unsaved) title += " *";
-      glfwSetWindowTitle(window, title.c_str());
-
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui_ImplGlfw_NewFrame();
-      ImGui::NewFrame();
-      const ImVec2 display = ImGui::GetIO().DisplaySize;
-      const Layout layout = computeLayout(display, preferences.layout);
-      place(layout.files);
-      drawFilesPanel(state, files_panel);
-      place(layout.body);
-      drawBodyPanel(state);
-      place(layout.log);
-      drawLogPanel(state);
-      place(layout.timeline);
-      drawTimelinePanel(state);
-      place(layout.spectrum);
-      if (right_tab == 0) {
-        drawSpectrumPanel(state, spectrum_panel, right_tab);
-      } else {
-        drawStylePanel(state, style_panel, right_tab);
-      }
-      applyEdits(state);  // undo, redo and project loads change the edits too
-      pollEvolution(state);
-      place(layout.evolve);
-      drawEvolvePanel(state);
-      place(layout.exporting);
-      drawExportPanel(state);
-      handleKeys(state, files_panel, events.keys);
-      events.keys.clear();
-      if (drawQuitPrompt(state, files_panel, ask_to_quit)) {
-        quit_confirmed = true;
-        glfwSetWindowShouldClose(window, GLFW_TRUE);
-      }
-      if (!headless) followResizes(layout, display, preferences.layout);
-      // One undo step per finished edit: nothing is recorded while a slider is being dragged.
-      if (!ImGui::IsAnyItemActive()) recordHistory(state);
-      handleViewportMouse(camera, drag, layout.viewport);
-      const Scene scene = buildScene(state);
-      if (drag.click && !scene.individuals.empty()) {
-        // A click on an individual of the population shows its fitness in the Evolve panel.
-        const Rect& v = layout.viewport;
-        const ImVec2 mouse = ImGui::GetIO().MousePos;
-        const float x = (mouse.x - v.pos.x) / v.size.x * 2.0f - 1.0f;
-        const float y = 1.0f - (mouse.y - v.pos.y) / v.size.y * 2.0f;
-        state.evolution.selected =
-            pickIndividual(scene, camera.eye(), camera.rayDirection(x, y, v.size.x / v.size.y));
-      }
-      updateCamera(camera, state, scene, dt);
-      drawOverlay(state, layout.viewport, frame_times, renderer.ready());
-      ImGui::Render();
-
-      int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
-      glfwGetFramebufferSize(window, &fb_w, &fb_h);
-      glfwGetWindowSize(window, &win_w, &win_h);
-      const float sx = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
-      const float sy = win_h > 0 ? float(fb_h) / float(win_h) : 1.0f;
-      glViewport(0, 0, fb_w, fb_h);
-      glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      const Rect& v = layout.viewport;
-      ViewportRect rect;
-      rect.x = static_cast<int>(std::lround(v.pos.x * sx));
-      rect.width = std::max(static_cast<int>(std::lround(v.size.x * sx)), 1);
-      rect.height = std::max(static_cast<int>(std::lround(v.size.y * sy)), 1);
-      rect.y = fb_h - static_cast<int>(std::lround(v.pos.y * sy)) - rect.height;
-      renderer.draw(rect, camera, scene, state.view.show_grid);
-      for (LogLine& line : renderer.takeMessages()) state.log.add(line.level, std::move(line.text));
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
-      const double elapsed_s = std::chrono::duration<double>(now - start).count();
-      const bool searching = state.evolution.snapshot &&
-                             state.evolution.snapshot->state == search::SessionState::kRunning;
-      const int generation = state.evolution.snapshot ? state.evolution.snapshot->generation : 0;
-      if (options.bench) {
-        // The frame-time benchmark: the clip alone, then the population replaying while the
-        // search runs on the other threads; the same window, the same process.
-        if (bench.phase == BenchPhase::kWaiting && (generation >= 1 || elapsed_s > 300.0)) {
-          if (generation < 1) {
-            std::cerr << "sinew edit: --bench: the search finished no generation in 300 s\n";
-            exit_code = 1;
-            glfwSetWindowShouldClose(window, GLFW_TRUE);
-          }
-          bench.phase = BenchPhase::kSearching;
-          frame_times.clear();
-          frame = 0;
-        }
-        if (bench.phase != BenchPhase::kWaiting) ++frame;
-        if (bench.phase == BenchPhase::kIdle && frame >= options.frames) {
-          bench.idle_median = frame_times.percentile(0.5);
-          bench.idle_p95 = frame_times.percentile(0.95);
-          if (!startEvolution(state)) {
-            exit_code = 1;
-            glfwSetWindowShouldClose(window, GLFW_TRUE);
-          }
-          bench.phase = BenchPhase::kWaiting;
-        }
-      } else {
-        // A screenshot of a search waits for its generations (at most two minutes of wall time).
-        const bool waiting = headless && options.evolve && searching &&
-                             generation < options.evolve_generations && elapsed_s < 120.0;
-        if (!waiting) ++frame;
-      }
-      const bool done = options.bench
-                            ? bench.phase == BenchPhase::kSearching && frame >= options.frames
-                            : headless && frame >= options.frames;
-      if (style_shot_pending) {
-        // The Style tab, drawn this frame in the Spectrum panel's place.
-        const Rect& r = layout.spectrum;
-        const std::string path = (std::filesystem::path(options.panel_dir) / "style.png").string();
-        if (Status status = saveFramebufferRegionPng(path, fb_w, fb_h,
-                                                     static_cast<int>(std::lround(r.pos.x * sx)),
-                                                     static_cast<int>(std::lround(r.pos.y * sy)),
-                                                     static_cast<int>(std::lround(r.size.x * sx)),
-                                                     static_cast<int>(std::lround(r.size.y * sy)));
-            !status.ok()) {
-          std::cerr << "sinew edit: " << status.message() << '\n';
-          exit_code = 1;
-        }
-        glfwSetWindowShouldClose(window, GLFW_TRUE);
-      } else if (done) {
-        if (options.bench) {
-          const double median = frame_times.percentile(0.5), p95 = frame_times.percentile(0.95);
-          std::printf(
-              "editor frame time, %dx%d, %d frames each, %s:\n"
-              "  the clip alone:                        median %6.1f ms (%4.0f fps), 95th "
-              "percentile %6.1f ms\n"
-              "  %2d characters while the search runs:   median %6.1f ms (%4.0f fps), 95th "
-              "percentile %6.1f ms  (generation %d, %s)\n"
-              "  ratio (search / alone): median %.2fx, 95th percentile %.2fx\n",
-              fb_w, fb_h, options.frames, reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
-              bench.idle_median * 1000.0, bench.idle_median > 0 ? 1.0 / bench.idle_median : 0.0,
-              bench.idle_p95 * 1000.0, state.evolution.settings.shown, median * 1000.0,
-              median > 0 ? 1.0 / median : 0.0, p95 * 1000.0, generation,
-              searching ? "still running" : "finished",
-              bench.idle_median > 0 ? median / bench.idle_median : 0.0,
-              bench.idle_p95 > 0 ? p95 / bench.idle_p95 : 0.0);
-        }
-        if (!options.screenshot.empty()) {
-          if (Status status = saveFramebufferPng(options.screenshot, fb_w, fb_h); !status.ok()) {
-            std::cerr << "sinew edit: " << status.message() << '\n';
-            exit_code = 1;
-          } else {
-            std::printf(
-                "sinew edit: wrote %s (%dx%d) after %d frames; frame time median %.1f ms "
-                "(%.0f fps), 95th percentile %.1f ms\n",
-                options.screenshot.c_str(), fb_w, fb_h, frame, frame_times.percentile(0.5) * 1000.0,
-                frame_times.percentile(0.5) > 0 ? 1.0 / frame_times.percentile(0.5) : 0.0,
-                frame_times.percentile(0.95) * 1000.0);
-          }
-        }
-        if (!options.panel_dir.empty()) {
-          // One PNG per panel, for the user guide.
-          std::error_code ec;
-          std::filesystem::create_directories(options.panel_dir, ec);
-          const std::pair<const char*, const Rect*> panels[] = {
-              {"files", &layout.files},       {"body", &layout.body},
-              {"log", &layout.log},           {"timeline", &layout.timeline},
-              {"spectrum", &layout.spectrum}, {"evolve", &layout.evolve},
-              {"export", &layout.exporting},  {"viewport", &layout.viewport}};
-          for (const auto& [name, r] : panels) {
-            const std::string path =
-                (std::filesystem::path(options.panel_dir) / (std::string(name) + ".png")).string();
-            const Status status = saveFramebufferRegionPng(
-                path, fb_w, fb_h, static_cast<int>(std::lround(r->pos.x * sx)),
-                static_cast<int>(std::lround(r->pos.y * sy)),
-                static_cast<int>(std::lround(r->size.x * sx)),
-                static_cast<int>(std::lround(r->size.y * sy)));
-            if (!status.ok()) {
-              std::cerr << "sinew edit: " << status.message() << '\n';
-              exit_code = 1;
-            }
-          }
-          std::printf("sinew edit: wrote the panels to %s\n", options.panel_dir.c_str());
-          right_tab = 1;  // one more frame for the Style tab
-          style_shot_pending = true;
-        } else {
-          glfwSetWindowShouldClose(window, GLFW_TRUE);
-        }
-      }
-      glfwSwapBuffers(window);
-
-      // Autosave to the recovery file every 30 s while there are unsaved changes.
-      if (!recovery.empty() && unsaved && now - last_autosave > std::chrono::seconds(30)) {
-        last_autosave = now;
-        const app::Project current = captureProject(state);
-        if (!(current == autosaved)) {
-          if (Status status = writeRecovery(state, recovery); !status.ok()) {
-            state.log.warning("autosave: " + status.message());
-          }
-          autosaved = current;
-        }
-      }
-    }
-    stopEvolution(state);
-    if (!config.empty()) {
-      std::error_code ec;
-      std::filesystem::remove(recovery, ec);  // closed on purpose: nothing to recover
-      preferences.recent_files = state.recent_files;
-      int w = 0, h = 0;
-      glfwGetWindowSize(window, &w, &h);
-      if (w >= 320 && h >= 240) {
-        preferences.window_width = w;
-        preferences.window_height = h;
-      }
-      if (Status saved = savePreferences(preferences, config / kPreferencesFile); !saved.ok()) {
-        std::cerr << "sinew edit: " << saved.message() << '\n';
-      }
-    }
-  }  // GL objects go before the context
-
+void closeWindow(GLFWwindow* window) {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   glfwDestroyWindow(window);
   glfwTerminate();
+}
+
+// ---------------------------------------------------------------- the UI thread's state
+
+// Everything one run of the window owns besides the window: the model, the panels' own state,
+// the view. Holds GL objects (the renderer): destroyed before the context.
+struct EditorSession {
+  EditorState state;
+  FilesPanelState files_panel;
+  SpectrumPanelState spectrum_panel;
+  StylePanelState style_panel;
+  int right_tab = 0;                // Spectrum or Style
+  bool style_shot_pending = false;  // --panel-shots: the Style tab's picture is next
+  OrbitCamera camera;
+  ViewportDrag drag;
+  FrameTimes frame_times;
+  Renderer renderer;
+  std::filesystem::path recovery;  // the autosave file, empty in headless runs
+};
+
+// A recovery file left behind means the last session ended without closing: keep it aside
+// (this session autosaves over the usual name) and offer it at the top of Recent.
+void keepRecovery(EditorState& state, const std::filesystem::path& config,
+                  const std::filesystem::path& recovery) {
+  if (recovery.empty() || !std::filesystem::exists(recovery)) return;
+  const std::filesystem::path kept = config / "recovered.sinew.json";
+  std::error_code ec;
+  std::filesystem::rename(recovery, kept, ec);
+  if (!ec) {
+    rememberRecent(state, kept.string());
+    state.log.warning("the last session ended with unsaved changes; they are in " + kept.string() +
+                      " (first in Recent)");
+  }
+}
+
+// The renderer, the remembered files, and what the command line asked for.
+void startSession(EditorSession& s, const EditorOptions& options, const Preferences& preferences,
+                  const std::string& preferences_error, const std::filesystem::path& config) {
+  EditorState& state = s.state;
+  state.log.info(std::string("OpenGL ") + reinterpret_cast<const char*>(glGetString(GL_VERSION)) +
+                 " on " + reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+  if (Status status = s.renderer.init(options.shader_dir); !status.ok()) {
+    state.log.error(status.message());
+  }
+  state.recent_files = preferences.recent_files;
+  if (!preferences_error.empty()) state.log.warning(preferences_error + " (using the defaults)");
+  s.recovery = config.empty() ? config : config / kRecoveryFile;
+  keepRecovery(state, config, s.recovery);
+  state.view.shadows = options.shadows;
+  state.view.show_mesh = options.mesh;
+  if (!options.file.empty()) {
+    s.files_panel.path = options.file;
+    s.files_panel.animation = options.animation;
+    if (!openAny(state, options.file, options.animation)) startUntitled(state);
+  }
+  state.evolution.settings.shown = options.shown;
+  if (options.bench) state.evolution.settings.search.minutes = options.evolve_minutes;
+  if (options.evolve) {
+    state.evolution.settings.search.minutes = options.evolve_minutes;
+    startEvolution(state);
+  }
+  if (state.analysis)
+    s.spectrum_panel.global_k = state.analysis->joint_k.empty() ? 5 : state.analysis->joint_k[0];
+}
+
+// Closed on purpose: nothing to recover; the recent files and the window's size are kept.
+void rememberOnClose(Preferences& preferences, const EditorSession& s, GLFWwindow* window,
+                     const std::filesystem::path& config) {
+  std::error_code ec;
+  std::filesystem::remove(s.recovery, ec);
+  preferences.recent_files = s.state.recent_files;
+  int w = 0, h = 0;
+  glfwGetWindowSize(window, &w, &h);
+  if (w >= 320 && h >= 240) {
+    preferences.window_width = w;
+    preferences.window_height = h;
+  }
+  if (Status saved = savePreferences(preferences, config / kPreferencesFile); !saved.ok()) {
+    std::cerr << "sinew edit: " << saved.message() << '\n';
+  }
+}
+
+// ---------------------------------------------------------------- one frame
+
+// Files dropped on the window since the last frame, opened now.
+void openDropped(EditorSession& s, WindowEvents& events) {
+  for (const std::string& path : events.dropped) {
+    if (openAny(s.state, path)) {
+      s.files_panel.path = path;
+      s.files_panel.save_path.clear();
+    }
+  }
+  events.dropped.clear();
+}
+
+void setWindowTitle(GLFWwindow* window, const EditorState& state, bool unsaved) {
+  std::string title = "Sinew";
+  if (!state.project_path.empty()) title += " - " + state.project_path.filename().string();
+  if (!state.file_name.empty()) title += " - " + state.file_name;
+  if (unsaved) title += " *";
+  glfwSetWindowTitle(window, title.c_str());
+}
+
+// Every panel in its place, the keys, the quit prompt and the undo history. Returns true when
+// the user confirmed closing with unsaved changes.
+bool drawPanels(EditorSession& s, const Layout& layout, WindowEvents& events, bool& ask_to_quit) {
+  EditorState& state = s.state;
+  place(layout.files);
+  drawFilesPanel(state, s.files_panel);
+  place(layout.body);
+  drawBodyPanel(state);
+  place(layout.log);
+  drawLogPanel(state);
+  place(layout.timeline);
+  drawTimelinePanel(state);
+  place(layout.spectrum);
+  if (s.right_tab == 0) {
+    drawSpectrumPanel(state, s.spectrum_panel, s.right_tab);
+  } else {
+    drawStylePanel(state, s.style_panel, s.right_tab);
+  }
+  applyEdits(state);  // undo, redo and project loads change the edits too
+  pollEvolution(state);
+  place(layout.evolve);
+  drawEvolvePanel(state);
+  place(layout.exporting);
+  drawExportPanel(state);
+  handleKeys(state, s.files_panel, events.keys);
+  events.keys.clear();
+  return drawQuitPrompt(state, s.files_panel, ask_to_quit);
+}
+
+// A click on an individual of the population shows its fitness in the Evolve panel.
+void pickClicked(EditorSession& s, const Scene& scene, const Rect& v) {
+  if (!s.drag.click || scene.individuals.empty()) return;
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const float x = (mouse.x - v.pos.x) / v.size.x * 2.0f - 1.0f;
+  const float y = 1.0f - (mouse.y - v.pos.y) / v.size.y * 2.0f;
+  s.state.evolution.selected =
+      pickIndividual(scene, s.camera.eye(), s.camera.rayDirection(x, y, v.size.x / v.size.y));
+}
+
+// The framebuffer's size in pixels and its scale from window coordinates (HiDPI).
+struct Framebuffer {
+  int width = 0;
+  int height = 0;
+  float sx = 1.0f;
+  float sy = 1.0f;
+
+  Status savePanel(const std::string& path, const Rect& r) const {
+    return saveFramebufferRegionPng(
+        path, width, height, static_cast<int>(std::lround(r.pos.x * sx)),
+        static_cast<int>(std::lround(r.pos.y * sy)), static_cast<int>(std::lround(r.size.x * sx)),
+        static_cast<int>(std::lround(r.size.y * sy)));
+  }
+};
+
+// The 3D view in the viewport's pixels, then ImGui over it.
+Framebuffer renderFrame(GLFWwindow* window, EditorSession& s, const Layout& layout,
+                        const Scene& scene) {
+  Framebuffer fb;
+  int win_w = 0, win_h = 0;
+  glfwGetFramebufferSize(window, &fb.width, &fb.height);
+  glfwGetWindowSize(window, &win_w, &win_h);
+  fb.sx = win_w > 0 ? float(fb.width) / float(win_w) : 1.0f;
+  fb.sy = win_h > 0 ? float(fb.height) / float(win_h) : 1.0f;
+  glViewport(0, 0, fb.width, fb.height);
+  glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const Rect& v = layout.viewport;
+  ViewportRect rect;
+  rect.x = static_cast<int>(std::lround(v.pos.x * fb.sx));
+  rect.width = std::max(static_cast<int>(std::lround(v.size.x * fb.sx)), 1);
+  rect.height = std::max(static_cast<int>(std::lround(v.size.y * fb.sy)), 1);
+  rect.y = fb.height - static_cast<int>(std::lround(v.pos.y * fb.sy)) - rect.height;
+  s.renderer.draw(rect, s.camera, scene, s.state.view.show_grid);
+  for (LogLine& line : s.renderer.takeMessages()) s.state.log.add(line.level, std::move(line.text));
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  return fb;
+}
+
+// ---------------------------------------------------------------- headless runs
+
+// Where a headless run (--screenshot, --bench, --panel-shots) is: frames counted, the
+// benchmark's phase, its idle figures, and whether anything failed.
+enum class BenchPhase { kIdle, kWaiting, kSearching };
+struct RunProgress {
+  int frame = 0;
+  BenchPhase phase = BenchPhase::kIdle;
+  double idle_median = 0.0, idle_p95 = 0.0;
+  int exit_code = 0;
+};
+
+bool searchRunning(const EditorState& state) {
+  return state.evolution.snapshot &&
+         state.evolution.snapshot->state == search::SessionState::kRunning;
+}
+int searchGeneration(const EditorState& state) {
+  return state.evolution.snapshot ? state.evolution.snapshot->generation : 0;
+}
+
+// Counts this frame towards --frames; returns true when the run's frames are all drawn. The
+// frame-time benchmark: the clip alone, then the population replaying while the search runs on
+// the other threads; the same window, the same process.
+bool countFrame(RunProgress& run, EditorSession& s, const EditorOptions& options, bool headless,
+                double elapsed_s, GLFWwindow* window) {
+  const int generation = searchGeneration(s.state);
+  if (!options.bench) {
+    // A screenshot of a search waits for its generations (at most two minutes of wall time).
+    const bool waiting = headless && options.evolve && searchRunning(s.state) &&
+                         generation < options.evolve_generations && elapsed_s < 120.0;
+    if (!waiting) ++run.frame;
+    return headless && run.frame >= options.frames;
+  }
+  if (run.phase == BenchPhase::kWaiting && (generation >= 1 || elapsed_s > 300.0)) {
+    if (generation < 1) {
+      std::cerr << "sinew edit: --bench: the search finished no generation in 300 s\n";
+      run.exit_code = 1;
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+    run.phase = BenchPhase::kSearching;
+    s.frame_times.clear();
+    run.frame = 0;
+  }
+  if (run.phase != BenchPhase::kWaiting) ++run.frame;
+  if (run.phase == BenchPhase::kIdle && run.frame >= options.frames) {
+    run.idle_median = s.frame_times.percentile(0.5);
+    run.idle_p95 = s.frame_times.percentile(0.95);
+    if (!startEvolution(s.state)) {
+      run.exit_code = 1;
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+    run.phase = BenchPhase::kWaiting;
+  }
+  return run.phase == BenchPhase::kSearching && run.frame >= options.frames;
+}
+
+void printBench(const RunProgress& run, const EditorSession& s, const EditorOptions& options,
+                const Framebuffer& fb) {
+  const double median = s.frame_times.percentile(0.5), p95 = s.frame_times.percentile(0.95);
+  std::printf(
+      "editor frame time, %dx%d, %d frames each, %s:\n"
+      "  the clip alone:                        median %6.1f ms (%4.0f fps), 95th "
+      "percentile %6.1f ms\n"
+      "  %2d characters while the search runs:   median %6.1f ms (%4.0f fps), 95th "
+      "percentile %6.1f ms  (generation %d, %s)\n"
+      "  ratio (search / alone): median %.2fx, 95th percentile %.2fx\n",
+      fb.width, fb.height, options.frames, reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+      run.idle_median * 1000.0, run.idle_median > 0 ? 1.0 / run.idle_median : 0.0,
+      run.idle_p95 * 1000.0, s.state.evolution.settings.shown, median * 1000.0,
+      median > 0 ? 1.0 / median : 0.0, p95 * 1000.0, searchGeneration(s.state),
+      searchRunning(s.state) ? "still running" : "finished",
+      run.idle_median > 0 ? median / run.idle_median : 0.0,
+      run.idle_p95 > 0 ? p95 / run.idle_p95 : 0.0);
+}
+
+void writeScreenshot(RunProgress& run, const EditorSession& s, const EditorOptions& options,
+                     const Framebuffer& fb) {
+  if (Status status = saveFramebufferPng(options.screenshot, fb.width, fb.height); !status.ok()) {
+    std::cerr << "sinew edit: " << status.message() << '\n';
+    run.exit_code = 1;
+    return;
+  }
+  const FrameTimes& times = s.frame_times;
+  std::printf(
+      "sinew edit: wrote %s (%dx%d) after %d frames; frame time median %.1f ms "
+      "(%.0f fps), 95th percentile %.1f ms\n",
+      options.screenshot.c_str(), fb.width, fb.height, run.frame, times.percentile(0.5) * 1000.0,
+      times.percentile(0.5) > 0 ? 1.0 / times.percentile(0.5) : 0.0,
+      times.percentile(0.95) * 1000.0);
+}
+
+// One PNG per panel, for the user guide.
+void writePanelShots(RunProgress& run, const EditorOptions& options, const Layout& layout,
+                     const Framebuffer& fb) {
+  std::error_code ec;
+  std::filesystem::create_directories(options.panel_dir, ec);
+  const std::pair<const char*, const Rect*> panels[] = {
+      {"files", &layout.files},       {"body", &layout.body},         {"log", &layout.log},
+      {"timeline", &layout.timeline}, {"spectrum", &layout.spectrum}, {"evolve", &layout.evolve},
+      {"export", &layout.exporting},  {"viewport", &layout.viewport}};
+  for (const auto& [name, r] : panels) {
+    const std::string path =
+        (std::filesystem::path(options.panel_dir) / (std::string(name) + ".png")).string();
+    if (Status status = fb.savePanel(path, *r); !status.ok()) {
+      std::cerr << "sinew edit: " << status.message() << '\n';
+      run.exit_code = 1;
+    }
+  }
+  std::printf("sinew edit: wrote the panels to %s\n", options.panel_dir.c_str());
+}
+
+// After this frame is drawn: the pictures a headless run asked for, and closing when it is done.
+void finishHeadlessFrame(RunProgress& run, EditorSession& s, const EditorOptions& options,
+                         const Layout& layout, const Framebuffer& fb, bool done,
+                         GLFWwindow* window) {
+  if (s.style_shot_pending) {
+    // The Style tab, drawn this frame in the Spectrum panel's place.
+    const std::string path = (std::filesystem::path(options.panel_dir) / "style.png").string();
+    if (Status status = fb.savePanel(path, layout.spectrum); !status.ok()) {
+      std::cerr << "sinew edit: " << status.message() << '\n';
+      run.exit_code = 1;
+    }
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+    return;
+  }
+  if (!done) return;
+  if (options.bench) printBench(run, s, options, fb);
+  if (!options.screenshot.empty()) writeScreenshot(run, s, options, fb);
+  if (options.panel_dir.empty()) {
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+    return;
+  }
+  writePanelShots(run, options, layout, fb);
+  s.right_tab = 1;  // one more frame for the Style tab
+  s.style_shot_pending = true;
+}
+
+// Autosave to the recovery file every 30 s while there are unsaved changes.
+struct Autosave {
+  Clock::time_point last;
+  app::Project saved;  // what the recovery file holds
+};
+
+void autosave(Autosave& autosaved, EditorSession& s, bool unsaved, Clock::time_point now) {
+  if (s.recovery.empty() || !unsaved || now - autosaved.last <= std::chrono::seconds(30)) return;
+  autosaved.last = now;
+  const app::Project current = captureProject(s.state);
+  if (current == autosaved.saved) return;
+  if (Status status = writeRecovery(s.state, s.recovery); !status.ok()) {
+    s.state.log.warning("autosave: " + status.message());
+  }
+  autosaved.saved = current;
+}
+
+// The main loop, until the window closes: events, panels, the 3D view, headless pictures,
+// autosave. Returns the exit code.
+int runFrames(GLFWwindow* window, WindowEvents& events, EditorSession& s,
+              const EditorOptions& options, PanelLayout& user_layout, bool headless) {
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start;
+  Autosave autosaved{start, s.state.saved};
+  bool ask_to_quit = false;
+  bool quit_confirmed = false;
+  RunProgress run;
+  while (true) {
+    if (glfwWindowShouldClose(window)) {
+      // Unsaved changes: ask first (never in headless runs).
+      if (headless || quit_confirmed || !hasUnsavedChanges(s.state)) break;
+      glfwSetWindowShouldClose(window, GLFW_FALSE);
+      ask_to_quit = true;
+    }
+    glfwPollEvents();
+    const Clock::time_point now = Clock::now();
+    const double dt = headless ? kScreenshotDt : std::chrono::duration<double>(now - last).count();
+    if (run.frame > 0) s.frame_times.add(std::chrono::duration<double>(now - last).count());
+    last = now;
+    s.state.log.clock_s = std::chrono::duration<double>(now - start).count();
+    openDropped(s, events);
+    advancePlayback(s.state, std::min(dt, 0.25));
+    const bool unsaved = hasUnsavedChanges(s.state);
+    setWindowTitle(window, s.state, unsaved);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const Layout layout = computeLayout(display, user_layout);
+    if (drawPanels(s, layout, events, ask_to_quit)) {
+      quit_confirmed = true;
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+    if (!headless) followResizes(layout, display, user_layout);
+    // One undo step per finished edit: nothing is recorded while a slider is being dragged.
+    if (!ImGui::IsAnyItemActive()) recordHistory(s.state);
+    handleViewportMouse(s.camera, s.drag, layout.viewport);
+    const Scene scene = buildScene(s.state);
+    pickClicked(s, scene, layout.viewport);
+    updateCamera(s.camera, s.state, scene, dt);
+    drawOverlay(s.state, layout.viewport, s.frame_times, s.renderer.ready());
+    ImGui::Render();
+    const Framebuffer fb = renderFrame(window, s, layout, scene);
+
+    const double elapsed_s = std::chrono::duration<double>(now - start).count();
+    const bool done = countFrame(run, s, options, headless, elapsed_s, window);
+    finishHeadlessFrame(run, s, options, layout, fb, done, window);
+    glfwSwapBuffers(window);
+    autosave(autosaved, s, unsaved, now);
+  }
+  return run.exit_code;
+}
+
+}  // namespace
+
+int runEditor(const EditorOptions& options) {
+  if (!options.export_dir.empty()) return runHeadlessEvolve(options);
+  glfwSetErrorCallback(onGlfwError);
+  if (glfwInit() == GLFW_FALSE) {
+    std::cerr << "sinew edit: cannot open a window (no display? set DISPLAY or run under "
+                 "xvfb-run)\n";
+    return 1;
+  }
+  // What the editor remembers between runs (not in headless runs: screenshots and tests see the
+  // defaults and leave the user's files alone).
+  const bool headless = !options.screenshot.empty() || options.bench;
+  const std::filesystem::path config = headless ? std::filesystem::path() : configDir();
+  std::string preferences_error;
+  Preferences preferences = loadEditorPreferences(config, preferences_error);
+  const int width = headless ? kWindowWidth : preferences.window_width;
+  const int height = headless ? kWindowHeight : preferences.window_height;
+  WindowEvents events;
+  GLFWwindow* window = openWindow(width, height, headless, events);
+  if (window == nullptr) return 1;
+  int exit_code = 0;
+  {
+    EditorSession session;
+    startSession(session, options, preferences, preferences_error, config);
+    exit_code = runFrames(window, events, session, options, preferences.layout, headless);
+    stopEvolution(session.state);
+    if (!config.empty()) rememberOnClose(preferences, session, window, config);
+  }  // GL objects go before the context
+  closeWindow(window);
   return exit_code;
 }
 

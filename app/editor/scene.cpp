@@ -165,139 +165,150 @@ double displayScale(const motion::MotionAsset& asset, double* extent_out) {
   return extent > kImplausibleCharacterSize_m ? 0.01 : 1.0;
 }
 
-Scene buildScene(const EditorState& state) {
-  Scene scene;
-  scene.shadows = state.view.shadows;
-  const motion::Clip* clip = state.clip();
-  if (clip == nullptr) return scene;
-  const motion::MotionAsset& asset = *state.asset;
-  const motion::Skeleton& skeleton = asset.skeleton;
-  const int joints = skeleton.jointCount();
-  scene.display_scale = displayScale(asset);
-  const double scale = scene.display_scale;
-  const float height = static_cast<float>(std::max(restExtent(skeleton) * scale, 0.1));
-  const float radius = 0.022f * height;
+namespace {
 
-  // The original at the playback time, between the two frames around it.
-  const double frame = std::clamp(state.playback.time_s / clip->frame_time, 0.0,
-                                  static_cast<double>(clip->frame_count - 1));
-  std::vector<glm::dmat4> world0(static_cast<size_t>(joints));
-  worldBetweenFrames(skeleton, *clip, frame, world0);
+// What every part of the scene draws the character at: its display scale and size.
+struct SceneFigure {
+  const motion::MotionAsset& asset;
+  int joints = 0;
+  double scale = 1.0;   // display scale (0.01 for a rig in centimetres)
+  float height = 0.1f;  // rest extent, display units
+  float radius = 0.0f;  // bone capsule radius, display units
+  int pelvis = 0;
+};
+
+// Horizontal unit vector to the side of a travel velocity (+X when it stands still).
+glm::vec3 sideOfTravel(const glm::dvec3& v) {
+  if (glm::length(glm::dvec2(v.x, v.z)) > 1e-3) {
+    return glm::normalize(glm::vec3(static_cast<float>(v.z), 0.0f, static_cast<float>(-v.x)));
+  }
+  return glm::vec3(1.0f, 0.0f, 0.0f);
+}
+
+// The original at the playback time, between the two frames around it: skinned meshes, bones.
+void addOriginal(Scene& scene, const EditorState& state, const SceneFigure& figure) {
+  const motion::Clip& clip = *state.clip();
+  const motion::Skeleton& skeleton = figure.asset.skeleton;
+  const double frame = std::clamp(state.playback.time_s / clip.frame_time, 0.0,
+                                  static_cast<double>(clip.frame_count - 1));
+  std::vector<glm::dmat4> world0(static_cast<size_t>(figure.joints));
+  worldBetweenFrames(skeleton, clip, frame, world0);
   // The meshes skin with the transforms the capsules are placed by, so both show one pose.
-  const bool meshes = state.view.show_mesh && !asset.meshes.empty();
+  const bool meshes = state.view.show_mesh && !figure.asset.meshes.empty();
   if (state.view.show_original && meshes) {
-    scene.asset = &asset;
-    for (size_t m = 0; m < asset.meshes.size(); ++m) {
-      const motion::SkinnedMesh& mesh = asset.meshes[m];
-      if (mesh.inverse_bind.size() != static_cast<size_t>(joints)) continue;
+    scene.asset = &figure.asset;
+    for (size_t m = 0; m < figure.asset.meshes.size(); ++m) {
+      const motion::SkinnedMesh& mesh = figure.asset.meshes[m];
+      if (mesh.inverse_bind.size() != static_cast<size_t>(figure.joints)) continue;
       SkinnedDraw draw;
       draw.mesh = static_cast<int>(m);
-      draw.skinning.resize(static_cast<size_t>(joints));
-      skinningMatrices(mesh, world0, scale, draw.skinning);
+      draw.skinning.resize(static_cast<size_t>(figure.joints));
+      skinningMatrices(mesh, world0, figure.scale, draw.skinning);
       scene.skinned.push_back(std::move(draw));
     }
   }
-  applyScale(world0, scale);
-  const int pelvis = joints > 0 ? motion::pelvisJoint(skeleton) : 0;
-  scene.root = glm::vec3(world0[pelvis][3]);
-  if (state.view.show_original) {
-    if (!meshes) {
-      appendBones(skeleton, world0, glm::vec3(0.0f), radius, state.view.show_end_sites,
-                  state.selected_joint, nullptr, scene.opaque);
-    } else if (state.view.show_skeleton) {
-      appendBones(skeleton, world0, glm::vec3(0.0f), radius * 0.6f, state.view.show_end_sites,
-                  state.selected_joint, nullptr, scene.xray);
-      for (CapsuleInstance& c : scene.xray) c.color.a = kXrayOpacity;
-    }
+  applyScale(world0, figure.scale);
+  scene.root = glm::vec3(world0[figure.pelvis][3]);
+  if (!state.view.show_original) return;
+  if (!meshes) {
+    appendBones(skeleton, world0, glm::vec3(0.0f), figure.radius, state.view.show_end_sites,
+                state.selected_joint, nullptr, scene.opaque);
+  } else if (state.view.show_skeleton) {
+    appendBones(skeleton, world0, glm::vec3(0.0f), figure.radius * 0.6f, state.view.show_end_sites,
+                state.selected_joint, nullptr, scene.xray);
+    for (CapsuleInstance& c : scene.xray) c.color.a = kXrayOpacity;
   }
+}
 
-  // The model at the same time (its phase origin is the analysed window's start).
-  if (state.view.show_model && state.analysis) {
-    const spectral::TargetMotion& target = state.analysis->target;
-    if (target.jointCount() == joints) {
-      motion::Clip pose;
-      pose.frame_time = clip->frame_time;
-      pose.frame_count = 1;
-      pose.joint_count = joints;
-      pose.rotations.resize(static_cast<size_t>(joints));
-      pose.translations.resize(static_cast<size_t>(joints));
-      if (!target.base_scales.empty()) pose.scales = target.base_scales;
-      target.pose(state.playback.time_s - state.analysis->spectrum.window.start_s, pose.rotations,
-                  pose.translations);
-      std::vector<glm::dmat4> model_world(static_cast<size_t>(joints));
-      motion::worldTransforms(skeleton, pose, 0, model_world);
-      applyScale(model_world, scale);
-      // Beside: to the character's side, perpendicular to its travel on the ground.
-      glm::vec3 offset(0.0f);
-      if (state.view.model_beside) {
-        const glm::dvec3 v = state.analysis->spectrum.travel_velocity;
-        glm::vec3 side(1.0f, 0.0f, 0.0f);
-        if (glm::length(glm::dvec2(v.x, v.z)) > 1e-3) {
-          side = glm::normalize(glm::vec3(static_cast<float>(v.z), 0.0f, static_cast<float>(-v.x)));
-        }
-        // Clear of the mesh when the original is drawn as one (arms out, a tail): the model's
-        // skeleton is about as wide, so a full mesh width and a tenth apart.
-        float apart = 0.45f * height;
-        if (!scene.skinned.empty()) apart = std::max(apart, 1.1f * meshWidth(asset, side, scale));
-        offset = side * apart;
-      }
-      appendBones(skeleton, model_world, offset, radius, state.view.show_end_sites,
-                  state.selected_joint, &kModelColor, scene.translucent);
+// The model at the same time (its phase origin is the analysed window's start), over the
+// original or beside it.
+void addModel(Scene& scene, const EditorState& state, const SceneFigure& figure) {
+  const spectral::TargetMotion& target = state.analysis->target;
+  if (target.jointCount() != figure.joints) return;
+  const motion::Skeleton& skeleton = figure.asset.skeleton;
+  motion::Clip pose;
+  pose.frame_time = state.clip()->frame_time;
+  pose.frame_count = 1;
+  pose.joint_count = figure.joints;
+  pose.rotations.resize(static_cast<size_t>(figure.joints));
+  pose.translations.resize(static_cast<size_t>(figure.joints));
+  if (!target.base_scales.empty()) pose.scales = target.base_scales;
+  target.pose(state.playback.time_s - state.analysis->spectrum.window.start_s, pose.rotations,
+              pose.translations);
+  std::vector<glm::dmat4> model_world(static_cast<size_t>(figure.joints));
+  motion::worldTransforms(skeleton, pose, 0, model_world);
+  applyScale(model_world, figure.scale);
+  // Beside: to the character's side, perpendicular to its travel on the ground.
+  glm::vec3 offset(0.0f);
+  if (state.view.model_beside) {
+    const glm::vec3 side = sideOfTravel(state.analysis->spectrum.travel_velocity);
+    // Clear of the mesh when the original is drawn as one (arms out, a tail): the model's
+    // skeleton is about as wide, so a full mesh width and a tenth apart.
+    float apart = 0.45f * figure.height;
+    if (!scene.skinned.empty()) {
+      apart = std::max(apart, 1.1f * meshWidth(figure.asset, side, figure.scale));
     }
+    offset = side * apart;
   }
-  // The search's population, best first, in a grid on the other side (rows of eight, further rows
-  // behind): each run replayed at the playback time (its own 10 s loop), travel removed so they
-  // stay beside the clip. They stay out of the bounds: the camera keeps framing the clip.
+  appendBones(skeleton, model_world, offset, figure.radius, state.view.show_end_sites,
+              state.selected_joint, &kModelColor, scene.translucent);
+}
+
+// The search's population, best first, in a grid on the other side (rows of eight, further rows
+// behind): each run replayed at the playback time (its own 10 s loop), travel removed so they
+// stay beside the clip. Returned apart: they stay out of the bounds, the camera keeps framing
+// the clip. Each drawn individual gets a pick box.
+std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& state,
+                                             const SceneFigure& figure) {
   std::vector<CapsuleInstance> population;
   const EvolutionState& evolution = state.evolution;
-  if (evolution.show_population && evolution.snapshot &&
-      !evolution.snapshot->population_motions.empty()) {
-    const search::Snapshot& snap = *evolution.snapshot;
-    std::vector<size_t> order(snap.population_motions.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-      return snap.population_terms[a].total < snap.population_terms[b].total;
-    });
-    const glm::dvec3 v =
-        state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0);
-    glm::vec3 side(1.0f, 0.0f, 0.0f);
-    if (glm::length(glm::dvec2(v.x, v.z)) > 1e-3)
-      side = glm::normalize(glm::vec3(static_cast<float>(v.z), 0.0f, static_cast<float>(-v.x)));
-    const glm::vec3 forward(-side.z, 0.0f, side.x);
-    constexpr size_t kColumns = 8;  // the default 8 in one row; 16 in two
-    const size_t shown =
-        std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
-    std::vector<glm::dmat4> run_world(static_cast<size_t>(joints));
-    for (size_t rank = 0; rank < shown; ++rank) {
-      const motion::Clip& run = snap.population_motions[order[rank]];
-      if (run.frame_count < 1 || run.joint_count != joints) continue;
-      const double duration = std::max(run.duration(), run.frame_time);
-      const double t = std::fmod(state.playback.time_s, duration);
-      const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
-      motion::worldTransforms(skeleton, run, f, run_world);
-      applyScale(run_world, scale);
-      // Travel removed (the run stays beside the clip), height and falls kept.
-      glm::vec3 offset = scene.root - glm::vec3(run_world[pelvis][3]);
-      offset.y = 0.0f;
-      offset -= side * (0.5f * height * static_cast<float>(rank % kColumns + 1));
-      offset -= forward * (0.7f * height * static_cast<float>(rank / kColumns));
-      const size_t first = population.size();
-      const bool picked = static_cast<int>(order[rank]) == evolution.selected;
-      appendBones(skeleton, run_world, offset, radius * 0.9f, false, -1,
-                  picked      ? &kPickedColor
-                  : rank == 0 ? &kBestColor
-                              : &kIndividualColor,
-                  population);
-      PickBox box{static_cast<int>(order[rank]), glm::vec3(1e30f), glm::vec3(-1e30f)};
-      for (size_t i = first; i < population.size(); ++i) {
-        const CapsuleInstance& c = population[i];
-        box.lo = glm::min(box.lo, glm::min(c.a, c.b) - c.radius);
-        box.hi = glm::max(box.hi, glm::max(c.a, c.b) + c.radius);
-      }
-      if (population.size() > first) scene.individuals.push_back(box);
+  const search::Snapshot& snap = *evolution.snapshot;
+  std::vector<size_t> order(snap.population_motions.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return snap.population_terms[a].total < snap.population_terms[b].total;
+  });
+  const glm::vec3 side =
+      sideOfTravel(state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0));
+  const glm::vec3 forward(-side.z, 0.0f, side.x);
+  constexpr size_t kColumns = 8;  // the default 8 in one row; 16 in two
+  const size_t shown =
+      std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
+  std::vector<glm::dmat4> run_world(static_cast<size_t>(figure.joints));
+  for (size_t rank = 0; rank < shown; ++rank) {
+    const motion::Clip& run = snap.population_motions[order[rank]];
+    if (run.frame_count < 1 || run.joint_count != figure.joints) continue;
+    const double duration = std::max(run.duration(), run.frame_time);
+    const double t = std::fmod(state.playback.time_s, duration);
+    const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
+    motion::worldTransforms(figure.asset.skeleton, run, f, run_world);
+    applyScale(run_world, figure.scale);
+    // Travel removed (the run stays beside the clip), height and falls kept.
+    glm::vec3 offset = scene.root - glm::vec3(run_world[figure.pelvis][3]);
+    offset.y = 0.0f;
+    offset -= side * (0.5f * figure.height * static_cast<float>(rank % kColumns + 1));
+    offset -= forward * (0.7f * figure.height * static_cast<float>(rank / kColumns));
+    const size_t first = population.size();
+    const bool picked = static_cast<int>(order[rank]) == evolution.selected;
+    appendBones(figure.asset.skeleton, run_world, offset, figure.radius * 0.9f, false, -1,
+                picked      ? &kPickedColor
+                : rank == 0 ? &kBestColor
+                            : &kIndividualColor,
+                population);
+    PickBox box{static_cast<int>(order[rank]), glm::vec3(1e30f), glm::vec3(-1e30f)};
+    for (size_t i = first; i < population.size(); ++i) {
+      const CapsuleInstance& c = population[i];
+      box.lo = glm::min(box.lo, glm::min(c.a, c.b) - c.radius);
+      box.hi = glm::max(box.hi, glm::max(c.a, c.b) + c.radius);
     }
+    if (population.size() > first) scene.individuals.push_back(box);
   }
+  return population;
+}
 
+// Bounds of what the camera frames (not the population, drawn after the model's shadows).
+void finishScene(Scene& scene, const motion::MotionAsset& asset,
+                 const std::vector<CapsuleInstance>& population) {
   scene.bounds_min = glm::vec3(1e30f);
   scene.bounds_max = glm::vec3(-1e30f);
   growBounds(scene, scene.opaque);
@@ -312,6 +323,31 @@ Scene buildScene(const EditorState& state) {
   scene.empty = scene.opaque.empty() && scene.translucent.empty() && scene.skinned.empty() &&
                 scene.xray.empty();
   if (scene.empty) scene.bounds_min = scene.bounds_max = scene.root;
+}
+
+}  // namespace
+
+Scene buildScene(const EditorState& state) {
+  Scene scene;
+  scene.shadows = state.view.shadows;
+  if (state.clip() == nullptr) return scene;
+  const motion::MotionAsset& asset = *state.asset;
+  const int joints = asset.skeleton.jointCount();
+  scene.display_scale = displayScale(asset);
+  const double scale = scene.display_scale;
+  const float height = static_cast<float>(std::max(restExtent(asset.skeleton) * scale, 0.1));
+  const SceneFigure figure{asset,           joints,
+                           scale,           height,
+                           0.022f * height, joints > 0 ? motion::pelvisJoint(asset.skeleton) : 0};
+  addOriginal(scene, state, figure);
+  if (state.view.show_model && state.analysis) addModel(scene, state, figure);
+  std::vector<CapsuleInstance> population;
+  const EvolutionState& evolution = state.evolution;
+  if (evolution.show_population && evolution.snapshot &&
+      !evolution.snapshot->population_motions.empty()) {
+    population = populationBones(scene, state, figure);
+  }
+  finishScene(scene, asset, population);
   return scene;
 }
 

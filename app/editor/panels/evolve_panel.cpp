@@ -79,75 +79,68 @@ void plotHistory(const search::Snapshot& snap) {
   }
 }
 
-}  // namespace
+// The settings cannot change under a running search: one line says what they are.
+void drawRunningSettings(const EvolutionState& evolution) {
+  const search::EvolveSettings& used = evolution.session->settings();
+  ImGui::TextDisabled("%s, population %d, seed %llu, %.1f min, %.0f s window%s",
+                      used.optimizer == search::OptimizerKind::kGa ? "GA" : "CMA-ES",
+                      evolution.session->population(), static_cast<unsigned long long>(used.seed),
+                      used.minutes, evolution.session->problem().simulation.seconds,
+                      evolution.started.search.no_prior ? ", no prior" : "");
+}
 
-void drawEvolvePanel(EditorState& state) {
-  ImGui::Begin("Evolve", nullptr, ImGuiWindowFlags_NoCollapse);
-  EvolutionState& evolution = state.evolution;
-  const search::SessionState run_state =
-      evolution.snapshot ? evolution.snapshot->state : search::SessionState::kReady;
-  const bool running = search::underWay(run_state);
-  if (!state.analysis) {
-    ImGui::TextDisabled("Open a clip that analyses to evolve its physical motion.");
-    ImGui::End();
-    return;
+// Budget, window, prior, optimiser, population and seed of the next search.
+void drawSearchSettings(EvolutionState& evolution) {
+  ImGui::SetNextItemWidth(120.0f);
+  float minutes = static_cast<float>(evolution.settings.search.minutes);
+  if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
+    evolution.settings.search.minutes = minutes;
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(100.0f);
+  float window = static_cast<float>(evolution.settings.physics.window_s);
+  if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
+    evolution.settings.physics.window_s = window;
+  ImGui::Checkbox("no prior (baseline)", &evolution.settings.search.no_prior);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  search::OptimizerKind& optimizer = evolution.settings.search.optimizer;
+  const bool ga = optimizer == search::OptimizerKind::kGa;
+  if (ImGui::BeginCombo("optimiser", ga ? "GA" : "CMA-ES")) {
+    if (ImGui::Selectable("CMA-ES", !ga)) optimizer = search::OptimizerKind::kCmaes;
+    if (ImGui::Selectable("GA (baseline)", ga)) optimizer = search::OptimizerKind::kGa;
+    ImGui::EndCombo();
   }
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("population", &evolution.settings.search.population, 1, 4);
+  evolution.settings.search.population = std::clamp(evolution.settings.search.population, 0, 1000);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  int seed = static_cast<int>(evolution.settings.search.seed);
+  if (ImGui::InputInt("seed", &seed))
+    evolution.settings.search.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+}
 
-  if (running && evolution.session) {
-    // The settings cannot change under a running search: one line says what they are.
-    const search::EvolveSettings& used = evolution.session->settings();
-    ImGui::TextDisabled("%s, population %d, seed %llu, %.1f min, %.0f s window%s",
-                        used.optimizer == search::OptimizerKind::kGa ? "GA" : "CMA-ES",
-                        evolution.session->population(), static_cast<unsigned long long>(used.seed),
-                        used.minutes, evolution.session->problem().simulation.seconds,
-                        evolution.started.search.no_prior ? ", no prior" : "");
-  } else {
+// Live: a running search takes them from its next generation.
+void drawFitnessWeights(EditorState& state) {
+  if (!ImGui::TreeNode("fitness weights")) return;
+  bool changed = false;
+  for (int k = 0; k < search::kFitnessTermCount; ++k) {
+    float w = static_cast<float>(search::fitnessWeight(state.evolution.settings.search.weights, k));
     ImGui::SetNextItemWidth(120.0f);
-    float minutes = static_cast<float>(evolution.settings.search.minutes);
-    if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
-      evolution.settings.search.minutes = minutes;
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(100.0f);
-    float window = static_cast<float>(evolution.settings.physics.window_s);
-    if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
-      evolution.settings.physics.window_s = window;
-    ImGui::Checkbox("no prior (baseline)", &evolution.settings.search.no_prior);
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(90.0f);
-    search::OptimizerKind& optimizer = evolution.settings.search.optimizer;
-    const bool ga = optimizer == search::OptimizerKind::kGa;
-    if (ImGui::BeginCombo("optimiser", ga ? "GA" : "CMA-ES")) {
-      if (ImGui::Selectable("CMA-ES", !ga)) optimizer = search::OptimizerKind::kCmaes;
-      if (ImGui::Selectable("GA (baseline)", ga)) optimizer = search::OptimizerKind::kGa;
-      ImGui::EndCombo();
+    if (ImGui::DragFloat(search::fitnessTermName(k), &w, 0.01f, 0.0f, 100.0f, "%.3f")) {
+      search::fitnessWeight(state.evolution.settings.search.weights, k) = std::max(w, 0.0f);
+      changed = true;
     }
-    ImGui::SetNextItemWidth(90.0f);
-    ImGui::InputInt("population", &evolution.settings.search.population, 1, 4);
-    evolution.settings.search.population =
-        std::clamp(evolution.settings.search.population, 0, 1000);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(90.0f);
-    int seed = static_cast<int>(evolution.settings.search.seed);
-    if (ImGui::InputInt("seed", &seed))
-      evolution.settings.search.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+    if (k % 2 == 0 && k + 1 < search::kFitnessTermCount) ImGui::SameLine();
   }
-  if (ImGui::TreeNode("fitness weights")) {
-    // Live: a running search takes them from its next generation.
-    bool changed = false;
-    for (int k = 0; k < search::kFitnessTermCount; ++k) {
-      float w = static_cast<float>(search::fitnessWeight(evolution.settings.search.weights, k));
-      ImGui::SetNextItemWidth(120.0f);
-      if (ImGui::DragFloat(search::fitnessTermName(k), &w, 0.01f, 0.0f, 100.0f, "%.3f")) {
-        search::fitnessWeight(evolution.settings.search.weights, k) = std::max(w, 0.0f);
-        changed = true;
-      }
-      if (k % 2 == 0 && k + 1 < search::kFitnessTermCount) ImGui::SameLine();
-    }
-    if (changed) setEvolutionWeights(state);
-    ImGui::TreePop();
-  }
+  if (changed) setEvolutionWeights(state);
+  ImGui::TreePop();
+}
 
+// Start, or pause/resume and stop; whether the viewport shows the population.
+void drawRunButtons(EditorState& state, search::SessionState run_state, bool running) {
+  EvolutionState& evolution = state.evolution;
   if (!running) {
     if (ImGui::Button(evolution.snapshot ? "Start again" : "Start")) startEvolution(state);
   } else {
@@ -161,55 +154,77 @@ void drawEvolvePanel(EditorState& state) {
   }
   ImGui::SameLine();
   ImGui::Checkbox("show population", &evolution.show_population);
+}
 
+// The generation, the budget spent, and the terms of the individual clicked in the viewport
+// (or the best so far), then the history plot.
+void drawProgress(EvolutionState& evolution, search::SessionState run_state, bool running) {
+  const search::Snapshot& snap = *evolution.snapshot;
+  const double wall = snap.history.empty() ? 0.0 : snap.history.back().wall_s;
+  ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)",
+              search::sessionStateName(run_state), snap.generation, snap.evaluations, wall,
+              wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
+  if (running && evolution.session) {
+    // The budget spent (minutes of wall time since the start, as the session counts them).
+    const double budget_s = evolution.session->settings().minutes * 60.0;
+    const double spent = budget_s > 0.0 ? std::clamp(wall / budget_s, 0.0, 1.0) : 0.0;
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "%.0f / %.0f s of the budget", wall, budget_s);
+    ImGui::ProgressBar(static_cast<float>(spent), ImVec2(-1.0f, 0.0f), overlay);
+  }
+  if (snap.best_point.empty()) return;
+  const int picked = evolution.selected;
+  const bool show_picked = picked >= 0 && picked < static_cast<int>(snap.population_terms.size());
+  const search::FitnessTerms& t =
+      show_picked ? snap.population_terms[static_cast<size_t>(picked)] : snap.best_terms;
+  if (show_picked) {
+    int rank = 1;
+    for (const search::FitnessTerms& other : snap.population_terms) rank += other.total < t.total;
+    ImGui::TextColored(ImVec4(1.0f, 0.95f, 0.8f, 1.0f), "clicked: #%d of %zu in generation %d",
+                       rank, snap.population_terms.size(), snap.generation);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("show the best")) evolution.selected = -1;
+  }
+  ImGui::Text("%s: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", show_picked ? "it" : "best",
+              t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s, t.total);
+  if (t.fell && !t.fall_reason.empty())
+    ImGui::TextWrapped("why it fell: %s", t.fall_reason.c_str());
+  if (ImGui::BeginTable("terms", search::kFitnessTermCount, ImGuiTableFlags_SizingStretchSame)) {
+    for (int k = 0; k < search::kFitnessTermCount; ++k)
+      ImGui::TableSetupColumn(search::fitnessTermName(k));
+    ImGui::TableHeadersRow();
+    ImGui::TableNextRow();
+    for (int k = 0; k < search::kFitnessTermCount; ++k) {
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", search::fitnessTerm(t, k));
+    }
+    ImGui::EndTable();
+  }
+  plotHistory(snap);
+}
+
+}  // namespace
+
+void drawEvolvePanel(EditorState& state) {
+  ImGui::Begin("Evolve", nullptr, ImGuiWindowFlags_NoCollapse);
+  EvolutionState& evolution = state.evolution;
+  const search::SessionState run_state =
+      evolution.snapshot ? evolution.snapshot->state : search::SessionState::kReady;
+  const bool running = search::underWay(run_state);
+  if (!state.analysis) {
+    ImGui::TextDisabled("Open a clip that analyses to evolve its physical motion.");
+    ImGui::End();
+    return;
+  }
+  if (running && evolution.session) {
+    drawRunningSettings(evolution);
+  } else {
+    drawSearchSettings(evolution);
+  }
+  drawFitnessWeights(state);
+  drawRunButtons(state, run_state, running);
   if (evolution.snapshot) {
-    const search::Snapshot& snap = *evolution.snapshot;
-    const double wall = snap.history.empty() ? 0.0 : snap.history.back().wall_s;
-    ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)",
-                search::sessionStateName(run_state), snap.generation, snap.evaluations, wall,
-                wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
-    if (running && evolution.session) {
-      // The budget spent (minutes of wall time since the start, as the session counts them).
-      const double budget_s = evolution.session->settings().minutes * 60.0;
-      const double spent = budget_s > 0.0 ? std::clamp(wall / budget_s, 0.0, 1.0) : 0.0;
-      char overlay[64];
-      std::snprintf(overlay, sizeof overlay, "%.0f / %.0f s of the budget", wall, budget_s);
-      ImGui::ProgressBar(static_cast<float>(spent), ImVec2(-1.0f, 0.0f), overlay);
-    }
-    if (!snap.best_point.empty()) {
-      // The individual clicked in the viewport, or the best so far.
-      const int picked = evolution.selected;
-      const bool show_picked =
-          picked >= 0 && picked < static_cast<int>(snap.population_terms.size());
-      const search::FitnessTerms& t =
-          show_picked ? snap.population_terms[static_cast<size_t>(picked)] : snap.best_terms;
-      if (show_picked) {
-        int rank = 1;
-        for (const search::FitnessTerms& other : snap.population_terms)
-          rank += other.total < t.total;
-        ImGui::TextColored(ImVec4(1.0f, 0.95f, 0.8f, 1.0f), "clicked: #%d of %zu in generation %d",
-                           rank, snap.population_terms.size(), snap.generation);
-        ImGui::SameLine();
-        if (ImGui::SmallButton("show the best")) evolution.selected = -1;
-      }
-      ImGui::Text("%s: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", show_picked ? "it" : "best",
-                  t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s,
-                  t.total);
-      if (t.fell && !t.fall_reason.empty()) ImGui::TextWrapped("why it fell: %s", t.fall_reason.c_str());
-      if (ImGui::BeginTable("terms", search::kFitnessTermCount,
-                            ImGuiTableFlags_SizingStretchSame)) {
-        for (int k = 0; k < search::kFitnessTermCount; ++k)
-          ImGui::TableSetupColumn(search::fitnessTermName(k));
-        ImGui::TableHeadersRow();
-        ImGui::TableNextRow();
-        for (int k = 0; k < search::kFitnessTermCount; ++k) {
-          ImGui::TableNextColumn();
-          ImGui::Text("%.2f", search::fitnessTerm(t, k));
-        }
-        ImGui::EndTable();
-      }
-      plotHistory(snap);
-    }
+    drawProgress(evolution, run_state, running);
   } else {
     ImGui::TextWrapped(
         "Evolves the clip's Fourier controller (seeded from the model above) until "

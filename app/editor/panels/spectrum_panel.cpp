@@ -202,24 +202,11 @@ void drawRanking(EditorState& state) {
   }
 }
 
-}  // namespace
-
-void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) {
-  if (!ImGui::Begin("Spectrum", nullptr, ImGuiWindowFlags_NoCollapse)) {
-    ImGui::End();
-    return;
-  }
-  drawRightTabs(tab);
-  if (!state.analysis || state.clip() == nullptr) {
-    ImGui::TextDisabled(state.clip() == nullptr ? "Open a clip to see its spectrum."
-                                                : "This clip could not be analysed (see Log).");
-    ImGui::End();
-    return;
-  }
-  const motion::Skeleton& skeleton = state.asset->skeleton;
+// The stride, the model's error and size, and K for every joint (a number, or auto within a
+// tolerance).
+void drawSummary(EditorState& state, SpectrumPanelState& panel) {
   AnalysisState& analysis = *state.analysis;
   const spectral::MotionSpectrum& spectrum = analysis.spectrum;
-
   if (spectrum.stride.found) {
     ImGui::Text("Stride %.3f s (%.2f Hz)", spectrum.period_s, 1.0 / spectrum.period_s);
     ImGui::SameLine();
@@ -250,10 +237,12 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) 
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70.0f);
   ImGui::DragFloat("cm", &panel.tolerance_cm, 0.05f, 0.1f, 10.0f, "%.2f");
-  ImGui::Separator();
+}
 
-  // Left: the joint list. Right: the chosen joint.
-  const float list_w = 190.0f;
+// The joint list (the skeleton's tree, or ranked by what freezing each joint would cost).
+void drawJointList(EditorState& state, SpectrumPanelState& panel, float list_w) {
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  const AnalysisState& analysis = *state.analysis;
   ImGui::BeginChild("##joints", ImVec2(list_w, 0), true);
   ImGui::Checkbox("ranked", &panel.show_ranking);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("By what freezing each joint would cost");
@@ -263,7 +252,7 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) 
   }
   if (panel.show_ranking) drawRanking(state);
   for (int j = 0; j < skeleton.jointCount() && !panel.show_ranking; ++j) {
-    const bool moves = jointMoves(spectrum, j);
+    const bool moves = jointMoves(analysis.spectrum, j);
     if (panel.joints_moving_only && !moves) continue;
     char label[160];
     std::snprintf(label, sizeof label, "%*s%s", 2 * std::min(skeleton.depth(j), 8), "",
@@ -278,8 +267,12 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) 
     }
   }
   ImGui::EndChild();
-  ImGui::SameLine();
+}
 
+// The chosen joint: its K, its error, and its curves or harmonic bars.
+void drawJointDetail(EditorState& state, SpectrumPanelState& panel) {
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  const AnalysisState& analysis = *state.analysis;
   ImGui::BeginChild("##joint", ImVec2(0, 0), false);
   const int joint = std::clamp(state.selected_joint, 0, skeleton.jointCount() - 1);
   ImGui::Text("%s", skeleton.names[static_cast<size_t>(joint)].c_str());
@@ -309,6 +302,28 @@ void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) 
     drawBars(state, joint);
   }
   ImGui::EndChild();
+}
+
+}  // namespace
+
+void drawSpectrumPanel(EditorState& state, SpectrumPanelState& panel, int& tab) {
+  if (!ImGui::Begin("Spectrum", nullptr, ImGuiWindowFlags_NoCollapse)) {
+    ImGui::End();
+    return;
+  }
+  drawRightTabs(tab);
+  if (!state.analysis || state.clip() == nullptr) {
+    ImGui::TextDisabled(state.clip() == nullptr ? "Open a clip to see its spectrum."
+                                                : "This clip could not be analysed (see Log).");
+    ImGui::End();
+    return;
+  }
+  drawSummary(state, panel);
+  ImGui::Separator();
+  // Left: the joint list. Right: the chosen joint.
+  drawJointList(state, panel, 190.0f);
+  ImGui::SameLine();
+  drawJointDetail(state, panel);
   ImGui::End();
 }
 

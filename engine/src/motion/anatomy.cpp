@@ -75,7 +75,9 @@ int upAxisOf(const std::vector<FigurePoint>& points, const std::vector<glm::dvec
   return best_axis;
 }
 
-int commonAncestor(const Skeleton& skeleton, int a, int b) {
+// The deepest joint whose subtree holds both a and b (a itself when b is below it), or kNoParent
+// when they are in different trees.
+int lowestCommonAncestor(const Skeleton& skeleton, int a, int b) {
   while (a != b) {
     if (a > b)
       a = skeleton.parents[a];  // parents come first: step the deeper index up
@@ -150,7 +152,7 @@ FigureMeasure measureFigure(const Skeleton& skeleton, const Clip& clip, int up_a
   for (size_t a = 0; a < grounded.size(); ++a)
     for (size_t b = a + 1; b < grounded.size(); ++b) {
       const int meet =
-          commonAncestor(skeleton, points[grounded[a]].joint, points[grounded[b]].joint);
+          lowestCommonAncestor(skeleton, points[grounded[a]].joint, points[grounded[b]].joint);
       if (meet != kNoParent && joint_height[static_cast<size_t>(meet)] < 0.5 * measure.hip_height)
         group[findRoot(group, static_cast<int>(a))] = findRoot(group, static_cast<int>(b));
     }
@@ -335,13 +337,6 @@ std::vector<int> childCounts(const Skeleton& skeleton) {
   return counts;
 }
 
-int lowestCommonAncestor(const Skeleton& skeleton, int a, int b) {
-  for (int j = a; j != kNoParent; j = skeleton.parents[j]) {
-    if (inSubtree(skeleton, j, b)) return j;
-  }
-  return kNoParent;
-}
-
 // Length along the bones from `ancestor` down to `joint`, metres.
 double boneLength(const Skeleton& skeleton, int ancestor, int joint) {
   double length = 0.0;
@@ -351,17 +346,7 @@ double boneLength(const Skeleton& skeleton, int ancestor, int joint) {
   return length;
 }
 
-// World positions of every joint and End Site, frame by frame.
-struct Poses {
-  int joints = 0;
-  std::vector<glm::dvec3> joint;  // (frames x joints) metres
-  std::vector<glm::dvec3> site;   // (frames x joints) End Site, or the joint when it has none
-
-  const glm::dvec3& at(int frame, const FootPoint& p) const {
-    const size_t n = static_cast<size_t>(frame) * joints + p.joint;
-    return p.end_site ? site[n] : joint[n];
-  }
-};
+}  // namespace
 
 Poses computePoses(const Skeleton& skeleton, const Clip& clip, int frames) {
   Poses poses;
@@ -383,10 +368,11 @@ glm::dvec3 horizontal(const glm::dvec3& v) {
   return {v.x, 0.0, v.z};
 }
 
-// The figure's left for a travel direction (Y up): up x forward.
 glm::dvec3 leftOf(const glm::dvec3& forward) {
   return glm::cross(kUp, forward);
 }
+
+namespace {
 
 // ---------------------------------------------------------------- feet
 
@@ -591,146 +577,177 @@ Status SegmentMassTable::validate() const {
 
 // ---------------------------------------------------------------- masses
 
-MassDistribution massDistribution(const Skeleton& skeleton, const std::vector<Foot>& feet,
-                                  const SegmentMassTable& table) {
-  const int joints = skeleton.jointCount();
-  const int pelvis = pelvisJoint(skeleton);
-  std::vector<Segment> segment(joints, Segment::kNone);
-  std::vector<int> group(joints, -1);  // joints sharing one segment's mass
-  std::vector<bool> massless(joints, false);
-  for (int j = skeleton.parents[pelvis]; j != kNoParent; j = skeleton.parents[j]) {
-    massless[j] = true;
+namespace {
+
+constexpr int kHeadGroup = -2;   // the group of every head and neck joint
+constexpr int kTrunkGroup = -3;  // the group of every trunk joint
+
+// Each joint's segment and the group that shares one segment's mass, as massDistribution
+// assigns them: a joint keeps the first segment it is given. The joints above the pelvis (a
+// root that carries the travel) are massless and never assigned.
+struct SegmentAssignment {
+  const Skeleton& skeleton;
+  int joints = 0;
+  int pelvis = 0;
+  std::vector<Segment> segment;  // (joints)
+  std::vector<int> group;        // (joints) joints sharing one segment's mass, -1 none
+  std::vector<bool> massless;    // (joints)
+
+  explicit SegmentAssignment(const Skeleton& s)
+      : skeleton(s),
+        joints(s.jointCount()),
+        pelvis(pelvisJoint(s)),
+        segment(joints, Segment::kNone),
+        group(joints, -1),
+        massless(joints, false) {
+    for (int j = s.parents[pelvis]; j != kNoParent; j = s.parents[j]) massless[j] = true;
   }
-  const auto unassigned = [&](int j) {
+
+  bool unassigned(int j) const {
     return j != kNoParent && j != pelvis && !massless[j] && segment[j] == Segment::kNone;
-  };
-  const auto assign = [&](int j, Segment s, int g) {
+  }
+  void assign(int j, Segment s, int g) {
     if (unassigned(j)) {
       segment[j] = s;
       group[j] = g;
     }
-  };
-  const auto assignSubtree = [&](int root, Segment s) {
+  }
+  void assignSubtree(int root, Segment s, int g) {
     for (int j = root; j < joints; ++j) {
-      if (inSubtree(skeleton, root, j)) assign(j, s, root);
+      if (inSubtree(skeleton, root, j)) assign(j, s, g);
     }
-  };
+  }
   // A limb: its end's subtree, the bone above it, the one above that.
-  const auto assignLimb = [&](int end, Segment tip, Segment middle, Segment top) {
-    assignSubtree(end, tip);
+  void assignLimb(int end, Segment tip, Segment middle, Segment top) {
+    assignSubtree(end, tip, end);
     const int p = skeleton.parents[end];
     if (p == kNoParent) return;
     assign(p, middle, p);
     assign(skeleton.parents[p], top, skeleton.parents[p]);
-  };
-  for (const Foot& foot : feet)
-    assignLimb(foot.joint, Segment::kFoot, Segment::kShank, Segment::kThigh);
-  for (int j = 0; j < joints; ++j) {
-    if (!unassigned(j) || !isHandName(skeleton.names[j])) continue;
-    bool below_hand = false;
-    for (int a = skeleton.parents[j]; a != kNoParent; a = skeleton.parents[a]) {
-      below_hand = below_hand || isHandName(skeleton.names[a]);
-    }
-    if (!below_hand) assignLimb(j, Segment::kHand, Segment::kForearm, Segment::kUpperArm);
   }
-  constexpr int kHeadGroup = -2;
-  constexpr int kTrunkGroup = -3;
-  for (int j = 0; j < joints; ++j) {
-    if (unassigned(j) && isHeadName(skeleton.names[j])) {
-      for (int k = j; k < joints; ++k) {
-        if (inSubtree(skeleton, j, k)) assign(k, Segment::kHead, kHeadGroup);
-      }
+};
+
+// Legs from each foot up; arms from each uppermost hand (or wrist) up; the uppermost head's
+// subtree and the neck joints, head.
+void assignLimbsAndHead(SegmentAssignment& a, const std::vector<Foot>& feet) {
+  const Skeleton& skeleton = a.skeleton;
+  for (const Foot& foot : feet)
+    a.assignLimb(foot.joint, Segment::kFoot, Segment::kShank, Segment::kThigh);
+  for (int j = 0; j < a.joints; ++j) {
+    if (!a.unassigned(j) || !isHandName(skeleton.names[j])) continue;
+    bool below_hand = false;
+    for (int p = skeleton.parents[j]; p != kNoParent; p = skeleton.parents[p]) {
+      below_hand = below_hand || isHandName(skeleton.names[p]);
+    }
+    if (!below_hand) a.assignLimb(j, Segment::kHand, Segment::kForearm, Segment::kUpperArm);
+  }
+  for (int j = 0; j < a.joints; ++j) {
+    if (a.unassigned(j) && isHeadName(skeleton.names[j])) {
+      a.assignSubtree(j, Segment::kHead, kHeadGroup);
       break;
     }
   }
-  for (int j = 0; j < joints; ++j) {
-    if (isNeckName(skeleton.names[j])) assign(j, Segment::kHead, kHeadGroup);
+  for (int j = 0; j < a.joints; ++j) {
+    if (isNeckName(skeleton.names[j])) a.assign(j, Segment::kHead, kHeadGroup);
   }
-  // Everything above a limb or the head is trunk (the pelvis included).
-  for (int j = joints - 1; j >= 0; --j) {
-    if (segment[j] == Segment::kNone || segment[j] == Segment::kOther) continue;
-    for (int a = skeleton.parents[j]; a != kNoParent && !massless[a];
-         a = skeleton.parents[a]) {
-      if (segment[a] == Segment::kNone) {
-        segment[a] = Segment::kTrunk;
-        group[a] = kTrunkGroup;
+}
+
+// Everything above a limb or the head is trunk (the pelvis included). The rest: twist and
+// helper joints share their limb segment; trunk-named joints are trunk; anything else (a tail)
+// is "other".
+void assignTrunkAndRest(SegmentAssignment& a) {
+  const Skeleton& skeleton = a.skeleton;
+  for (int j = a.joints - 1; j >= 0; --j) {
+    if (a.segment[j] == Segment::kNone || a.segment[j] == Segment::kOther) continue;
+    for (int p = skeleton.parents[j]; p != kNoParent && !a.massless[p]; p = skeleton.parents[p]) {
+      if (a.segment[p] == Segment::kNone) {
+        a.segment[p] = Segment::kTrunk;
+        a.group[p] = kTrunkGroup;
       }
     }
   }
-  if (segment[pelvis] == Segment::kNone) {
-    segment[pelvis] = Segment::kTrunk;
-    group[pelvis] = kTrunkGroup;
+  if (a.segment[a.pelvis] == Segment::kNone) {
+    a.segment[a.pelvis] = Segment::kTrunk;
+    a.group[a.pelvis] = kTrunkGroup;
   }
-  // The rest: twist and helper joints share their limb segment; trunk-named joints are trunk;
-  // anything else (a tail) is "other".
-  for (int j = 0; j < joints; ++j) {
-    if (!unassigned(j)) continue;
+  for (int j = 0; j < a.joints; ++j) {
+    if (!a.unassigned(j)) continue;
     const int p = skeleton.parents[j];
-    const Segment parent = segment[p];
+    const Segment parent = a.segment[p];
     if (parent == Segment::kThigh || parent == Segment::kShank || parent == Segment::kUpperArm ||
         parent == Segment::kForearm) {
-      assign(j, parent, group[p]);
+      a.assign(j, parent, a.group[p]);
     } else if (isTrunkName(skeleton.names[j]) && parent == Segment::kTrunk) {
-      assign(j, Segment::kTrunk, kTrunkGroup);
+      a.assign(j, Segment::kTrunk, kTrunkGroup);
     } else {
-      assign(j, Segment::kOther, j);
+      a.assign(j, Segment::kOther, j);
     }
   }
+}
 
-  // Body lengths: the bones to the children and End Site.
-  std::vector<double> length(joints, 0.0);
-  for (int j = 0; j < joints; ++j) {
+// Body lengths: each joint's bones to its children and End Site, metres.
+std::vector<double> bodyLengths(const Skeleton& skeleton) {
+  std::vector<double> length(skeleton.jointCount(), 0.0);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
     const int p = skeleton.parents[j];
     if (p != kNoParent) length[p] += glm::length(skeleton.offsets[j]);
     if (skeleton.end_sites[j]) length[j] += glm::length(*skeleton.end_sites[j]);
   }
-  const auto tableFraction = [&](Segment s) {
-    switch (s) {
-      case Segment::kHead:
-        return table.head;
-      case Segment::kTrunk:
-        return table.trunk;
-      case Segment::kUpperArm:
-        return table.upper_arm;
-      case Segment::kForearm:
-        return table.forearm;
-      case Segment::kHand:
-        return table.hand;
-      case Segment::kThigh:
-        return table.thigh;
-      case Segment::kShank:
-        return table.shank;
-      case Segment::kFoot:
-        return table.foot;
-      case Segment::kNone:
-      case Segment::kOther:
-        break;
-    }
-    return 0.0;
-  };
-  // Each group's fraction, split among its joints by body length (evenly when they have none).
+  return length;
+}
+
+double tableFraction(const SegmentMassTable& table, Segment s) {
+  switch (s) {
+    case Segment::kHead:
+      return table.head;
+    case Segment::kTrunk:
+      return table.trunk;
+    case Segment::kUpperArm:
+      return table.upper_arm;
+    case Segment::kForearm:
+      return table.forearm;
+    case Segment::kHand:
+      return table.hand;
+    case Segment::kThigh:
+      return table.thigh;
+    case Segment::kShank:
+      return table.shank;
+    case Segment::kFoot:
+      return table.foot;
+    case Segment::kNone:
+    case Segment::kOther:
+      break;
+  }
+  return 0.0;
+}
+
+// Each group's fraction, split among its joints by body length (evenly when they have none);
+// "other" joints at the matched segments' mass per length; normalised to 1.
+std::vector<double> massFractions(const SegmentAssignment& a, const SegmentMassTable& table) {
+  const std::vector<double> length = bodyLengths(a.skeleton);
+  const int joints = a.joints;
   std::vector<double> fraction(joints, 0.0);
   double matched_mass = 0.0;
   double matched_length = 0.0;
   for (int j = 0; j < joints; ++j) {
-    if (segment[j] == Segment::kNone || segment[j] == Segment::kOther) continue;
+    if (a.segment[j] == Segment::kNone || a.segment[j] == Segment::kOther) continue;
     double group_length = 0.0;
     int members = 0;
     bool first_member = true;
     for (int k = 0; k < joints; ++k) {
-      if (group[k] != group[j] || segment[k] != segment[j]) continue;
+      if (a.group[k] != a.group[j] || a.segment[k] != a.segment[j]) continue;
       group_length += length[k];
       ++members;
       first_member = first_member && k >= j;
     }
     const double share = group_length > 0.0 ? length[j] / group_length : 1.0 / members;
-    fraction[j] = tableFraction(segment[j]) * share;
+    fraction[j] = tableFraction(table, a.segment[j]) * share;
     matched_mass += fraction[j];
     if (first_member) matched_length += group_length;
   }
   const double density = matched_length > 0.0 ? matched_mass / matched_length : 0.0;
   for (int j = 0; j < joints; ++j) {
-    if (segment[j] == Segment::kOther) fraction[j] = density * length[j];
+    if (a.segment[j] == Segment::kOther) fraction[j] = density * length[j];
   }
   const double total = std::accumulate(fraction.begin(), fraction.end(), 0.0);
   if (total > 0.0) {
@@ -738,7 +755,17 @@ MassDistribution massDistribution(const Skeleton& skeleton, const std::vector<Fo
   } else {
     fraction.assign(joints, 1.0 / joints);  // nothing matched and nothing has length
   }
-  return {segment, fraction};
+  return fraction;
+}
+
+}  // namespace
+
+MassDistribution massDistribution(const Skeleton& skeleton, const std::vector<Foot>& feet,
+                                  const SegmentMassTable& table) {
+  SegmentAssignment assignment(skeleton);
+  assignLimbsAndHead(assignment, feet);
+  assignTrunkAndRest(assignment);
+  return {assignment.segment, massFractions(assignment, table)};
 }
 
 std::vector<glm::dvec3> centreOfMass(const Skeleton& skeleton, const Clip& clip,

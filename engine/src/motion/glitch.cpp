@@ -6,35 +6,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "sinew/core/rotation.h"
+
 namespace sinew::motion {
 namespace {
 
 constexpr double kDegrees = 180.0 / 3.14159265358979323846;
-
-// Rotation angle between two unit quaternions, radians in [0, pi]; accurate for small angles.
-double angleBetween(const glm::dquat& a, const glm::dquat& b) {
-  const glm::dquat d = glm::inverse(a) * b;
-  const double s = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-  return 2.0 * std::atan2(s, std::abs(d.w));
-}
-
-glm::dquat shortSlerp(const glm::dquat& a, glm::dquat b, double t) {
-  if (glm::dot(a, b) < 0.0) b = -b;
-  return glm::normalize(glm::slerp(a, b, t));
-}
-
-// Rotation vector (axis times angle, radians) of q taken the short way, and back.
-glm::dvec3 toVector(glm::dquat q) {
-  if (q.w < 0.0) q = -q;
-  const double s = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
-  if (s < 1e-12) return glm::dvec3(2.0 * q.x, 2.0 * q.y, 2.0 * q.z);
-  return glm::dvec3(q.x, q.y, q.z) * (2.0 * std::atan2(s, q.w) / s);
-}
-glm::dquat fromVector(const glm::dvec3& v) {
-  const double angle = glm::length(v);
-  if (angle < 1e-12) return glm::normalize(glm::dquat(1.0, 0.5 * v.x, 0.5 * v.y, 0.5 * v.z));
-  return glm::angleAxis(angle, v / angle);
-}
 
 // The joint's rotations, frame by frame.
 std::vector<glm::dquat> jointTrack(const Clip& clip, int joint) {
@@ -141,7 +118,8 @@ void repairGlitches(Clip& clip, std::span<const Glitch> glitches) {
     if (cubic) {
       const glm::dquat inverse = glm::inverse(q0);
       const int frames[4] = {before - 1, before, after, after + 1};
-      for (int i = 0; i < 4; ++i) points[i] = toVector(inverse * clip.rotation(frames[i], g.joint));
+      for (int i = 0; i < 4; ++i)
+        points[i] = shortRotationVector(inverse * clip.rotation(frames[i], g.joint));
     }
     for (int k = 0; k < g.frame_count; ++k) {
       glm::dquat& q =
@@ -159,7 +137,7 @@ void repairGlitches(Clip& clip, std::span<const Glitch> glitches) {
         }
         v += weight * points[i];
       }
-      q = glm::normalize(q0 * fromVector(v));
+      q = glm::normalize(q0 * fromRotationVector(v));
     }
   }
 }

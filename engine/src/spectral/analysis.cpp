@@ -8,6 +8,7 @@
 #include <optional>
 #include <span>
 #include <sstream>
+#include <utility>
 
 #include "sinew/spectral/indirect.h"
 
@@ -83,28 +84,11 @@ motion::Clip clipFrames(const motion::Clip& clip, int first, int last) {
   return out;
 }
 
-// One kept harmonic as B cos D and B sin D: B sin(n w t + D) = B cos D sin(n w t) + B sin D
-// cos(n w t).
-struct Term {
-  int n = 1;
-  double b_cos = 0.0;
-  double b_sin = 0.0;
-};
-
-// What a channel's model is made of: A, the kept terms and the travel trend.
-struct ChannelTerms {
-  double mean = 0.0;
-  double trend = 0.0;
-  std::vector<Term> terms;
-};
-
 // The model's pose at frames first..last of the clip (t from start_s): mean pose, the channels'
-// series, travel. A frame's sin(n w t) and cos(n w t) for every n come from one sincos by the
-// angle-addition recurrence (as the physics controller evaluates targets) instead of one sin
-// per term; its rounding grows with n, to 1e-14 rad by n = 64.
+// series (one FourierEvaluator time per frame), travel continuing at each channel's `trends`.
 motion::Clip evaluateModel(const motion::Skeleton& skeleton, const MotionSignals& signals,
-                           int first, int last, double start_s, double omega0,
-                           const std::vector<ChannelTerms>& channels) {
+                           int first, int last, double start_s, FourierEvaluator series,
+                           const std::vector<double>& trends) {
   const int joints = skeleton.jointCount();
   motion::Clip out;
   out.name = "model";
@@ -118,12 +102,6 @@ motion::Clip evaluateModel(const motion::Skeleton& skeleton, const MotionSignals
       out.scales.insert(out.scales.end(), signals.mean_scales.begin(), signals.mean_scales.end());
     }
   }
-  int highest = 1;
-  for (const ChannelTerms& channel : channels) {
-    for (const Term& term : channel.terms) highest = std::max(highest, term.n);
-  }
-  std::vector<double> sines(highest + 1);
-  std::vector<double> cosines(highest + 1);
   for (int f = 0; f < out.frame_count; ++f) {
     const double t = (first + f) * signals.frame_time - start_s;
     for (int j = 0; j < joints; ++j) {
@@ -131,22 +109,11 @@ motion::Clip evaluateModel(const motion::Skeleton& skeleton, const MotionSignals
       out.rotations[n] = signals.mean_rotations[j];
       out.translations[n] = signals.mean_translations[j];
     }
-    const double angle = omega0 * t;
-    const double s1 = std::sin(angle);
-    const double c1 = std::cos(angle);
-    sines[0] = 0.0;
-    cosines[0] = 1.0;
-    for (int h = 1; h <= highest; ++h) {
-      sines[h] = sines[h - 1] * c1 + cosines[h - 1] * s1;
-      cosines[h] = cosines[h - 1] * c1 - sines[h - 1] * s1;
-    }
+    series.setTime(t);
     glm::dvec3 vector(0.0);
-    for (size_t c = 0; c < channels.size(); ++c) {
+    for (size_t c = 0; c < series.channelCount(); ++c) {
       const SignalChannel& channel = signals.channels[c];
-      double value = channels[c].mean;
-      for (const Term& term : channels[c].terms) {
-        value += term.b_cos * sines[term.n] + term.b_sin * cosines[term.n];
-      }
+      const double value = series.value(c);
       const size_t n = static_cast<size_t>(f) * joints + channel.joint;
       if (channel.kind == SignalKind::kRotation) {
         vector[channel.axis] = value;
@@ -156,7 +123,7 @@ motion::Clip evaluateModel(const motion::Skeleton& skeleton, const MotionSignals
         }
       } else {
         // Travel continues at the window's velocity.
-        out.translations[n][channel.axis] += value + channels[c].trend * t;
+        out.translations[n][channel.axis] += value + trends[c] * t;
       }
     }
   }
@@ -354,7 +321,7 @@ motion::Clip modelFromBins(const motion::Skeleton& skeleton, const MotionSignals
   const int periods = fit.window.strides;
   const size_t half = static_cast<size_t>(fit.samples / 2);
   const double scale = 2.0 / static_cast<double>(fit.samples);
-  std::vector<ChannelTerms> channels(fit.trends.size());
+  std::vector<FourierEvaluator::Channel> channels(fit.trends.size());
   std::vector<std::pair<double, int>> ranked;  // (squared magnitude, n)
   for (size_t c = 0; c < channels.size(); ++c) {
     const std::span<const std::complex<double>> bins = fit.channel(c);
@@ -368,7 +335,6 @@ motion::Clip modelFromBins(const motion::Skeleton& skeleton, const MotionSignals
                         return a.first > b.first || (a.first == b.first && a.second < b.second);
                       });
     channels[c].mean = bins[0].real() / static_cast<double>(fit.samples);
-    channels[c].trend = fit.trends[c];
     for (size_t h = 0; h < keep; ++h) {
       const int n = ranked[h].second;
       const std::complex<double> coefficient = bins[static_cast<size_t>(n * periods)] * scale;
@@ -376,7 +342,8 @@ motion::Clip modelFromBins(const motion::Skeleton& skeleton, const MotionSignals
     }
   }
   const auto [first, last] = frameRange(signals, fit.window, fit.period_s);
-  return evaluateModel(skeleton, signals, first, last, fit.window.start_s, fit.omega0, channels);
+  return evaluateModel(skeleton, signals, first, last, fit.window.start_s,
+                       FourierEvaluator(fit.omega0, std::move(channels)), fit.trends);
 }
 
 // World positions of every joint, then every End Site (joint order), for one frame: the
@@ -591,18 +558,16 @@ motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum&
                          const std::vector<int>& joint_k) {
   const std::vector<int>& k = joint_k.empty() ? spectrum.joint_k : joint_k;
   const MotionSignals& signals = spectrum.signals;
-  std::vector<ChannelTerms> channels(signals.channels.size());
+  std::vector<FourierEvaluator::Channel> channels(signals.channels.size());
   for (size_t c = 0; c < channels.size(); ++c) {
     channels[c].mean = spectrum.series[c].mean;
-    channels[c].trend = spectrum.trends[c];
     for (const Harmonic& h : spectrum.series[c].strongest(k[signals.channels[c].joint])) {
-      channels[c].terms.push_back(
-          {h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)});
+      channels[c].terms.push_back(cartesian(h));
     }
   }
   const auto [first, last] = windowFrameRange(spectrum);
-  return evaluateModel(skeleton, signals, first, last, spectrum.window.start_s, spectrum.omega0,
-                       channels);
+  return evaluateModel(skeleton, signals, first, last, spectrum.window.start_s,
+                       FourierEvaluator(spectrum.omega0, std::move(channels)), spectrum.trends);
 }
 
 std::vector<JointError> measureError(const motion::Skeleton& skeleton,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
 
 #include <kissfft/kissfft.hh>
 
@@ -22,10 +23,66 @@ std::vector<Harmonic> HarmonicSeries::strongest(int k) const {
   return sorted;
 }
 
+double sinusoid(double amplitude, double omega, double phase, double t) {
+  return amplitude * std::sin(omega * t + phase);
+}
+
 double evaluate(double mean, std::span<const Harmonic> terms, double omega0, double t) {
   double value = mean;
-  for (const Harmonic& h : terms) value += h.amplitude * std::sin(h.n * omega0 * t + h.phase);
+  for (const Harmonic& h : terms) value += sinusoid(h.amplitude, h.n * omega0, h.phase, t);
   return value;
+}
+
+double evaluateVelocity(std::span<const Harmonic> terms, double omega0, double t) {
+  double velocity = 0.0;
+  for (const Harmonic& h : terms) {
+    const double omega = h.n * omega0;
+    velocity += h.amplitude * omega * std::cos(omega * t + h.phase);
+  }
+  return velocity;
+}
+
+CartesianHarmonic cartesian(const Harmonic& h) {
+  return {h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)};
+}
+
+FourierEvaluator::FourierEvaluator(double omega0, std::vector<Channel> channels)
+    : omega0_(omega0), channels_(std::move(channels)) {
+  int highest = 0;
+  for (const Channel& channel : channels_) {
+    for (const CartesianHarmonic& term : channel.terms) highest = std::max(highest, term.n);
+  }
+  sines_.assign(static_cast<size_t>(highest) + 1, 0.0);
+  cosines_.assign(static_cast<size_t>(highest) + 1, 1.0);
+}
+
+void FourierEvaluator::setTime(double t) {
+  const double angle = omega0_ * t;
+  const double s1 = std::sin(angle);
+  const double c1 = std::cos(angle);
+  for (size_t n = 1; n < sines_.size(); ++n) {
+    sines_[n] = sines_[n - 1] * c1 + cosines_[n - 1] * s1;
+    cosines_[n] = cosines_[n - 1] * c1 - sines_[n - 1] * s1;
+  }
+}
+
+double FourierEvaluator::value(size_t c) const {
+  const Channel& channel = channels_[c];
+  double value = channel.mean;
+  for (const CartesianHarmonic& term : channel.terms) {
+    const size_t n = static_cast<size_t>(term.n);
+    value += term.b_cos * sines_[n] + term.b_sin * cosines_[n];
+  }
+  return value;
+}
+
+double FourierEvaluator::velocity(size_t c) const {
+  double velocity = 0.0;
+  for (const CartesianHarmonic& term : channels_[c].terms) {
+    const size_t n = static_cast<size_t>(term.n);
+    velocity += term.n * omega0_ * (term.b_cos * cosines_[n] - term.b_sin * sines_[n]);
+  }
+  return velocity;
 }
 
 struct HarmonicPlan::Fft {

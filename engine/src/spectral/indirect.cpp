@@ -9,47 +9,15 @@
 namespace sinew::spectral {
 namespace {
 
+using motion::computePoses;
+using motion::horizontal;
+using motion::leftOf;
+using motion::Poses;
+
 constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
 // Below this horizontal speed of the centre of mass the clip runs in place, and the figure's
 // facing replaces the travel direction, m/s.
 constexpr double kInPlaceSpeed = 0.1;
-
-// World positions of every joint and End Site, frame by frame.
-struct Poses {
-  int joints = 0;
-  std::vector<glm::dvec3> joint;  // (frames x joints) metres
-  std::vector<glm::dvec3> site;   // (frames x joints) End Site, or the joint when it has none
-
-  const glm::dvec3& at(int frame, const FootPoint& p) const {
-    const size_t n = static_cast<size_t>(frame) * joints + p.joint;
-    return p.end_site ? site[n] : joint[n];
-  }
-};
-
-Poses computePoses(const motion::Skeleton& skeleton, const motion::Clip& clip, int frames) {
-  Poses poses;
-  poses.joints = skeleton.jointCount();
-  std::vector<glm::dmat4> world(poses.joints);
-  for (int f = 0; f < frames; ++f) {
-    motion::worldTransforms(skeleton, clip, f, world);
-    for (int j = 0; j < poses.joints; ++j) {
-      poses.joint.emplace_back(world[j][3]);
-      poses.site.push_back(skeleton.end_sites[j]
-                               ? glm::dvec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0))
-                               : glm::dvec3(world[j][3]));
-    }
-  }
-  return poses;
-}
-
-glm::dvec3 horizontal(const glm::dvec3& v) {
-  return {v.x, 0.0, v.z};
-}
-
-// The figure's left for a travel direction (Y up): up x forward.
-glm::dvec3 leftOf(const glm::dvec3& forward) {
-  return glm::cross(kUp, forward);
-}
 
 }  // namespace
 
@@ -124,11 +92,20 @@ void cleanContacts(std::vector<std::uint8_t>& down, int max_gap, int min_length)
   });
 }
 
-}  // namespace
+// The analysed window in fractional frames of the clip.
+struct WindowSpan {
+  double first = 0.0;
+  double last = 0.0;
+};
 
-Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const motion::Clip& clip,
-                                        const MotionSpectrum& spectrum,
-                                        const IndirectSettings& settings) {
+WindowSpan windowSpan(const MotionSpectrum& spectrum, int frames, double dt) {
+  const double window_s = spectrum.window.strides * spectrum.period_s;
+  const double first = spectrum.window.start_s / dt;
+  return {first, std::min(first + window_s / dt, frames - 1.0)};
+}
+
+Status checkIndirectInputs(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                           const MotionSpectrum& spectrum, const IndirectSettings& settings) {
   if (Status status = settings.validate(); !status.ok()) return status;
   if (Status status = clip.validate(skeleton); !status.ok()) return status;
   if (clip.frame_count < 2)
@@ -138,63 +115,57 @@ Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const 
                          std::to_string(spectrum.signals.frame_count) + " frames against " +
                          std::to_string(clip.frame_count) + ")");
   }
-  Result<std::vector<Foot>> feet = findFeet(skeleton, clip);
-  if (!feet.ok()) return feet.status();
-  IndirectSignals out;
-  out.frame_time = clip.frame_time;
-  out.feet = std::move(feet).value();
-  const int frames = clip.frame_count;
-  const double dt = clip.frame_time;
-  const Poses poses = computePoses(skeleton, clip, frames);
-  const ContactSettings& cs = settings.contacts;
+  return {};
+}
 
-  // Each foot's contact point (its lowest point) per frame, its height above the foot's own
-  // ground level, and its horizontal speed. The speed follows the same point across the
-  // neighbouring frames, so a change of lowest point (heel to toe) is not a jump.
-  const auto footCount = out.feet.size();
-  out.ground_levels_m.resize(footCount);
-  out.foot_heights_m.assign(footCount, std::vector<double>(frames));
-  out.foot_speeds_m_s.assign(footCount, std::vector<double>(frames));
-  out.contacts.assign(footCount, std::vector<std::uint8_t>(frames, 0));
-  std::vector<std::vector<FootPoint>> lowest(footCount, std::vector<FootPoint>(frames));
-  for (size_t i = 0; i < footCount; ++i) {
-    const Foot& foot = out.feet[i];
-    std::vector<double>& height = out.foot_heights_m[i];
-    for (int f = 0; f < frames; ++f) {
-      FootPoint best = foot.points.front();
-      for (const FootPoint& p : foot.points) {
-        if (poses.at(f, p).y < poses.at(f, best).y) best = p;
-      }
-      lowest[i][f] = best;
-      height[f] = poses.at(f, best).y;
-      const int a = std::max(f - 1, 0);
-      const int b = std::min(f + 1, frames - 1);
-      out.foot_speeds_m_s[i][f] =
-          b > a ? glm::length(horizontal(poses.at(b, best) - poses.at(a, best))) / ((b - a) * dt)
-                : 0.0;
+// Foot i's contact point (its lowest point) per frame (into `lowest`), its height above the
+// foot's own ground level, its horizontal speed, and its contacts. The speed follows the same
+// point across the neighbouring frames, so a change of lowest point (heel to toe) is not a jump.
+void measureFoot(IndirectSignals& out, const Poses& poses, const ContactSettings& cs, size_t i,
+                 std::vector<FootPoint>& lowest) {
+  const Foot& foot = out.feet[i];
+  const int frames = static_cast<int>(lowest.size());
+  const double dt = out.frame_time;
+  std::vector<double>& height = out.foot_heights_m[i];
+  for (int f = 0; f < frames; ++f) {
+    FootPoint best = foot.points.front();
+    for (const FootPoint& p : foot.points) {
+      if (poses.at(f, p).y < poses.at(f, best).y) best = p;
     }
-    // The ground level is where the foot rests, not the lowest it ever goes: retargeted rigs
-    // (the iClone run) dip a toe tip below the stance level at toe-off, at speed.
-    std::vector<double> resting;
-    for (int f = 0; f < frames; ++f) {
-      if (out.foot_speeds_m_s[i][f] <= cs.speed_tolerance_m_s) resting.push_back(height[f]);
-    }
-    if (resting.empty()) resting = height;
-    const auto q = static_cast<long>(cs.ground_quantile * static_cast<double>(resting.size() - 1));
-    std::nth_element(resting.begin(), resting.begin() + q, resting.end());
-    out.ground_levels_m[i] = resting[static_cast<size_t>(q)];
-    for (int f = 0; f < frames; ++f) {
-      height[f] -= out.ground_levels_m[i];
-      out.contacts[i][f] =
-          height[f] <= cs.height_tolerance_m && out.foot_speeds_m_s[i][f] <= cs.speed_tolerance_m_s;
-    }
-    cleanContacts(out.contacts[i], static_cast<int>(std::floor(cs.max_gap_s / dt + 1e-9)),
-                  static_cast<int>(std::ceil(cs.min_contact_s / dt - 1e-9)));
+    lowest[f] = best;
+    height[f] = poses.at(f, best).y;
+    const int a = std::max(f - 1, 0);
+    const int b = std::min(f + 1, frames - 1);
+    out.foot_speeds_m_s[i][f] =
+        b > a ? glm::length(horizontal(poses.at(b, best) - poses.at(a, best))) / ((b - a) * dt)
+              : 0.0;
   }
+  // The ground level is where the foot rests, not the lowest it ever goes: retargeted rigs
+  // (the iClone run) dip a toe tip below the stance level at toe-off, at speed.
+  std::vector<double> resting;
+  for (int f = 0; f < frames; ++f) {
+    if (out.foot_speeds_m_s[i][f] <= cs.speed_tolerance_m_s) resting.push_back(height[f]);
+  }
+  if (resting.empty()) resting = height;
+  const auto q = static_cast<long>(cs.ground_quantile * static_cast<double>(resting.size() - 1));
+  std::nth_element(resting.begin(), resting.begin() + q, resting.end());
+  out.ground_levels_m[i] = resting[static_cast<size_t>(q)];
+  for (int f = 0; f < frames; ++f) {
+    height[f] -= out.ground_levels_m[i];
+    out.contacts[i][f] =
+        height[f] <= cs.height_tolerance_m && out.foot_speeds_m_s[i][f] <= cs.speed_tolerance_m_s;
+  }
+  cleanContacts(out.contacts[i], static_cast<int>(std::floor(cs.max_gap_s / dt + 1e-9)),
+                static_cast<int>(std::ceil(cs.min_contact_s / dt - 1e-9)));
+}
 
-  // Footfalls: contact starts after the first frame.
-  for (size_t i = 0; i < footCount; ++i) {
+// Footfalls: contact starts after the first frame, in time order.
+void findFootfalls(IndirectSignals& out, const Poses& poses,
+                   const std::vector<std::vector<FootPoint>>& lowest) {
+  const double dt = out.frame_time;
+  for (size_t i = 0; i < out.contacts.size(); ++i) {
     const std::vector<std::uint8_t>& down = out.contacts[i];
+    const int frames = static_cast<int>(down.size());
     for (int f = 1; f < frames; ++f) {
       if (!down[f] || down[f - 1]) continue;
       int end = f;
@@ -206,25 +177,24 @@ Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const 
   std::sort(out.footfalls.begin(), out.footfalls.end(), [](const Footfall& a, const Footfall& b) {
     return a.frame != b.frame ? a.frame < b.frame : a.foot < b.foot;
   });
+}
 
-  // The centre of mass, and the travel direction over the analysed window.
-  out.masses = massDistribution(skeleton, out.feet, settings.masses);
-  out.com = centreOfMass(skeleton, clip, out.masses);
-  const double window_s = spectrum.window.strides * spectrum.period_s;
-  const double first = spectrum.window.start_s / dt;
-  const double last = std::min(first + window_s / dt, frames - 1.0);
+// The travel direction of the centre of mass (out.com) over the window, its speed, and the
+// figure's left; in place, the figure's facing across its right feet to its left feet.
+void findTravel(IndirectSignals& out, const Poses& poses, const WindowSpan& window) {
+  const int frames = static_cast<int>(out.com.size());
+  const double dt = out.frame_time;
   const auto comAt = [&](double frame) {
     const int i = std::min(static_cast<int>(frame), frames - 2);
     const double u = frame - i;
     return (1.0 - u) * out.com[i] + u * out.com[i + 1];
   };
-  const glm::dvec3 travel = horizontal(comAt(last) - comAt(first));
-  const double travel_s = (last - first) * dt;
+  const glm::dvec3 travel = horizontal(comAt(window.last) - comAt(window.first));
+  const double travel_s = (window.last - window.first) * dt;
   out.gait.speed_m_s = travel_s > 0.0 ? glm::length(travel) / travel_s : 0.0;
   if (out.gait.speed_m_s > kInPlaceSpeed) {
     out.forward = glm::normalize(travel);
   } else {
-    // In place: the figure faces across the line from its right feet to its left feet.
     glm::dvec3 across(0.0);
     for (const Foot& foot : out.feet) {
       const double sign = foot.side == Side::kLeft ? 1.0 : foot.side == Side::kRight ? -1.0 : 0.0;
@@ -237,8 +207,10 @@ Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const 
     out.notes.push_back("the clip runs in place: forward is the figure's facing");
   }
   out.left = leftOf(out.forward);
+}
 
-  // Strides (same foot) and steps (to the pair's other foot).
+// Strides (same foot) and steps (to the pair's other foot), and their means.
+void measureStrides(IndirectSignals& out) {
   GaitFigures& gait = out.gait;
   double interval_sum = 0.0;
   double stride_length_sum = 0.0;
@@ -272,13 +244,19 @@ Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const 
     gait.step_width_m += step.width_m / static_cast<double>(out.steps.size());
     gait.step_duration_s += step.duration_s / static_cast<double>(out.steps.size());
   }
+}
+
+// The stride from contacts against the analysed one, and the duty factor over the window's
+// frames; notes where they disagree.
+void compareGait(IndirectSignals& out, const MotionSpectrum& spectrum, const WindowSpan& window) {
+  GaitFigures& gait = out.gait;
   gait.analysis_period_s = spectrum.stride.found ? spectrum.stride.period_s : 0.0;
   if (gait.stride_period_s > 0.0 && gait.analysis_period_s > 0.0) {
     gait.period_difference = gait.stride_period_s / gait.analysis_period_s - 1.0;
   }
-  // Duty factor over the analysed window's frames.
-  const int f0 = static_cast<int>(std::ceil(first - 1e-9));
-  const int f1 = static_cast<int>(std::floor(last + 1e-9));
+  const size_t footCount = out.feet.size();
+  const int f0 = static_cast<int>(std::ceil(window.first - 1e-9));
+  const int f1 = static_cast<int>(std::floor(window.last + 1e-9));
   for (size_t i = 0; i < footCount && f1 > f0; ++i) {
     const long down = std::count(out.contacts[i].begin() + f0, out.contacts[i].begin() + f1, 1);
     gait.duty_factor += static_cast<double>(down) / (f1 - f0) / static_cast<double>(footCount);
@@ -293,11 +271,15 @@ Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const 
          << 100.0 * gait.period_difference << "%";
     out.notes.push_back(note.str());
   }
+}
 
-  // Spectra over the analysed window: the centre of mass's bob, sway and surge (the latter two
-  // without the travel), each foot's contact indicator and height.
+// Spectra over the analysed window: the centre of mass's bob, sway and surge (the latter two
+// without the travel), each foot's contact indicator and height.
+void fitIndirectSpectra(IndirectSignals& out, const motion::Skeleton& skeleton,
+                        const MotionSpectrum& spectrum) {
+  const size_t frames = out.com.size();
   std::vector<double> height(frames), lateral(frames), surge(frames);
-  for (int f = 0; f < frames; ++f) {
+  for (size_t f = 0; f < frames; ++f) {
     height[f] = out.com[f].y;
     lateral[f] = glm::dot(out.com[f], out.left);
     surge[f] = glm::dot(out.com[f], out.forward);
@@ -305,13 +287,46 @@ Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const 
   out.spectra.push_back(fitOverWindow("com height", "m", height, spectrum, false));
   out.spectra.push_back(fitOverWindow("com lateral", "m", lateral, spectrum, true));
   out.spectra.push_back(fitOverWindow("com forward", "m", surge, spectrum, true));
-  for (size_t i = 0; i < footCount; ++i) {
+  for (size_t i = 0; i < out.feet.size(); ++i) {
     const std::string& name = skeleton.names[out.feet[i].joint];
     const std::vector<double> indicator(out.contacts[i].begin(), out.contacts[i].end());
     out.spectra.push_back(fitOverWindow(name + " contact", "", indicator, spectrum, false));
     out.spectra.push_back(
         fitOverWindow(name + " height", "m", out.foot_heights_m[i], spectrum, false));
   }
+}
+
+}  // namespace
+
+Result<IndirectSignals> analyzeIndirect(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                                        const MotionSpectrum& spectrum,
+                                        const IndirectSettings& settings) {
+  if (Status status = checkIndirectInputs(skeleton, clip, spectrum, settings); !status.ok())
+    return status;
+  Result<std::vector<Foot>> feet = findFeet(skeleton, clip);
+  if (!feet.ok()) return feet.status();
+  IndirectSignals out;
+  out.frame_time = clip.frame_time;
+  out.feet = std::move(feet).value();
+  const int frames = clip.frame_count;
+  const Poses poses = computePoses(skeleton, clip, frames);
+
+  const size_t footCount = out.feet.size();
+  out.ground_levels_m.resize(footCount);
+  out.foot_heights_m.assign(footCount, std::vector<double>(frames));
+  out.foot_speeds_m_s.assign(footCount, std::vector<double>(frames));
+  out.contacts.assign(footCount, std::vector<std::uint8_t>(frames, 0));
+  std::vector<std::vector<FootPoint>> lowest(footCount, std::vector<FootPoint>(frames));
+  for (size_t i = 0; i < footCount; ++i) measureFoot(out, poses, settings.contacts, i, lowest[i]);
+  findFootfalls(out, poses, lowest);
+
+  out.masses = massDistribution(skeleton, out.feet, settings.masses);
+  out.com = centreOfMass(skeleton, clip, out.masses);
+  const WindowSpan window = windowSpan(spectrum, frames, clip.frame_time);
+  findTravel(out, poses, window);
+  measureStrides(out);
+  compareGait(out, spectrum, window);
+  fitIndirectSpectra(out, skeleton, spectrum);
   return out;
 }
 

@@ -312,19 +312,10 @@ Result<PlotData> preparePlot(const motion::Skeleton& skeleton, const motion::Cli
   return plot;
 }
 
-std::string renderPlotSvg(const MotionSpectrum& spectrum, const PlotData& plot) {
-  const int rows = static_cast<int>(plot.rows.size());
-  const double height = kTitleHeight + rows * kRowHeight + kBottomMargin;
-  SvgWriter svg;
-  svg.out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  svg.out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
-             number(kWidth, 0) + "\" height=\"" + number(height, 0) + "\" viewBox=\"0 0 " +
-             number(kWidth, 0) + " " + number(height, 0) + "\">\n";
-  svg.out += "<title>" + xmlEscape(plot.clip_name) + ": harmonic model</title>\n";
-  svg.rect(0, 0, kWidth, height, "fill=\"#ffffff\"");
-  svg.out += std::string("<g font-family=\"") + kFont + "\">\n";
+namespace {
 
-  // Title block: what was analysed and what the whole model costs.
+// Title block: what was analysed and what the whole model costs.
+void drawTitle(SvgWriter& svg, const MotionSpectrum& spectrum, const PlotData& plot) {
   const int frames = static_cast<int>(plot.times_s.size());
   svg.text(24, 34, plot.clip_name, 21.0, kText, "start", " font-weight=\"bold\"");
   std::string line1;
@@ -358,8 +349,10 @@ std::string renderPlotSvg(const MotionSpectrum& spectrum, const PlotData& plot) 
                             number(spectrum.total.pos_err_cm_max, 2) + " cm max";
   svg.text(24, 57, line1, 13.0, kText);
   svg.text(24, 76, line2, 13.0, kText);
+}
 
-  // One legend for every row.
+// One legend for every row.
+void drawLegend(SvgWriter& svg) {
   double x = 24.0;
   const double ly = 102.0;
   const auto legendText = [&](const std::string& label, double gap_after) {
@@ -387,135 +380,166 @@ std::string renderPlotSvg(const MotionSpectrum& spectrum, const PlotData& plot) 
   x += 14.0;
   legendText("discarded", 28.0);
   legendText("curves: rotation vector from the mean pose, local axes", 0.0);
+}
 
-  for (int r = 0; r < rows; ++r) {
-    const PlotRow& row = plot.rows[r];
-    const double top = kTitleHeight + r * kRowHeight;
-    svg.out += "<g class=\"row\">\n";
-    svg.line(16, top + 0.5, kWidth - 16, top + 0.5, "#d0d0d0", 1.0);
+// A row's header: the joint, K and what keeping K costs it.
+void drawRowHeader(SvgWriter& svg, const PlotRow& row, double top) {
+  svg.line(16, top + 0.5, kWidth - 16, top + 0.5, "#d0d0d0", 1.0);
+  const std::string stats = "K = " + std::to_string(row.k) + "  \u00b7  angle error " +
+                            number(row.error.rot_err_deg_rms, 2) + "\u00b0 RMS, " +
+                            number(row.error.rot_err_deg_max, 2) + "\u00b0 max  \u00b7  position " +
+                            number(row.error.pos_err_cm_mean, 2) + " cm mean, " +
+                            number(row.error.pos_err_cm_max, 2) + " cm max";
+  // One text element: the renderer places the stats after the name, whatever its font.
+  svg.out += "<text x=\"24\" y=\"" + SvgWriter::px(top + 25) + "\" fill=\"" + kText +
+             "\"><tspan font-size=\"15\" font-weight=\"bold\">" + xmlEscape(row.name) +
+             "</tspan><tspan dx=\"14\" font-size=\"12.5\" fill=\"" + kMuted + "\">" +
+             xmlEscape(stats) + "</tspan></text>\n";
+  svg.text(kBarLeft, top + 25, "harmonic amplitudes", 12.5, kMuted);
+}
 
-    // Header: the joint, K and what keeping K costs it.
-    const std::string stats = "K = " + std::to_string(row.k) + "  \u00b7  angle error " +
-                              number(row.error.rot_err_deg_rms, 2) + "\u00b0 RMS, " +
-                              number(row.error.rot_err_deg_max, 2) +
-                              "\u00b0 max  \u00b7  position " +
-                              number(row.error.pos_err_cm_mean, 2) + " cm mean, " +
-                              number(row.error.pos_err_cm_max, 2) + " cm max";
-    // One text element: the renderer places the stats after the name, whatever its font.
-    svg.out += "<text x=\"24\" y=\"" + SvgWriter::px(top + 25) + "\" fill=\"" + kText +
-               "\"><tspan font-size=\"15\" font-weight=\"bold\">" + xmlEscape(row.name) +
-               "</tspan><tspan dx=\"14\" font-size=\"12.5\" fill=\"" + kMuted + "\">" +
-               xmlEscape(stats) + "</tspan></text>\n";
-    svg.text(kBarLeft, top + 25, "harmonic amplitudes", 12.5, kMuted);
+// How many y ticks a row's plots aim for.
+int rowTickCount(const Frame& frame) {
+  return std::max(3, static_cast<int>((frame.bottom - frame.top) / 32.0));
+}
 
-    // Left: the curves against the clip's frame numbers.
-    Frame curves;
-    curves.left = kCurveLeft;
-    curves.right = kCurveRight;
-    curves.top = top + kPlotTop;
-    curves.bottom = top + kRowHeight - kPlotBottom;
-    double lo = std::numeric_limits<double>::infinity();
-    double hi = -lo;
-    for (const PlotChannel& channel : row.channels) {
-      for (double v : channel.original_deg) lo = std::min(lo, v), hi = std::max(hi, v);
-      for (double v : channel.model_deg) lo = std::min(lo, v), hi = std::max(hi, v);
-    }
-    if (!(lo <= hi)) lo = hi = 0.0;
-    const int y_count = std::max(3, static_cast<int>((curves.bottom - curves.top) / 32.0));
-    const Ticks y_ticks = niceTicks(lo, hi, y_count, true);
-    const double first = plot.first_frame;
-    const double last = plot.first_frame + std::max(frames - 1, 1);
-    const int x_count = static_cast<int>((curves.right - curves.left) / 56.0);
-    const Ticks x_ticks = niceTicks(first, last, x_count, false, 1.0);
-    curves.x_lo = first;
-    curves.x_hi = last;
-    curves.y_lo = y_ticks.lo;
-    curves.y_hi = y_ticks.hi;
-    for (double v : x_ticks.values) {
-      const double xp = curves.x(v);
-      svg.line(xp, curves.top, xp, curves.bottom, kGrid, 1.0);
-      svg.line(xp, curves.bottom, xp, curves.bottom + 4.0, kAxisLine, 1.0);
-      svg.text(xp, curves.bottom + 17.0, number(v, 0), 11.0, kMuted, "middle");
-    }
-    drawYAxis(svg, curves, y_ticks);
-    // Stride boundaries inside a multi-stride window.
-    for (int s = 1; s < spectrum.window.strides; ++s) {
-      const double t = spectrum.window.start_s + s * spectrum.period_s;
-      const double xp = curves.x(t / spectrum.signals.frame_time);
-      svg.line(xp, curves.top, xp, curves.bottom, "#9a9a9a", 1.0, " stroke-dasharray=\"2 3\"");
-    }
-    drawFrameBox(svg, curves);
-    svg.text((curves.left + curves.right) / 2, curves.bottom + 36.0, "frame", 12.0, kMuted,
-             "middle");
-    const double mid_y = (curves.top + curves.bottom) / 2;
-    svg.text(28, mid_y, "degrees", 12.0, kMuted, "middle",
-             " transform=\"rotate(-90 28 " + number(mid_y, 1) + ")\"");
-    std::vector<double> xs(frames);
-    for (int i = 0; i < frames; ++i) xs[i] = plot.first_frame + i;
-    // Originals first (wide and pale), then every model on top, so that no original hides a
-    // model.
-    for (const PlotChannel& channel : row.channels) {
-      svg.polyline(curves, xs, channel.original_deg,
-                   std::string("class=\"original\" stroke=\"") + kAxisColour[channel.axis] +
-                       "\" stroke-width=\"4\" stroke-opacity=\"0.35\" stroke-linejoin=\"round\" "
-                       "stroke-linecap=\"round\"");
-    }
-    for (const PlotChannel& channel : row.channels) {
-      svg.polyline(
-          curves, xs, channel.model_deg,
-          std::string("class=\"model\" stroke=\"") + kAxisColour[channel.axis] +
-              "\" stroke-width=\"1.8\" stroke-dasharray=\"6 4\" stroke-linejoin=\"round\"");
-    }
-
-    // Right: amplitude of each harmonic, x y z side by side.
-    Frame bars;
-    bars.left = kBarLeft;
-    bars.right = kBarRight;
-    bars.top = curves.top;
-    bars.bottom = curves.bottom;
-    double most = 0.0;
-    for (const PlotChannel& channel : row.channels) {
-      for (double a : channel.amplitude_deg) most = std::max(most, a);
-    }
-    const Ticks a_ticks = niceTicks(0.0, std::max(most, 1e-3), y_count, true);
-    bars.x_lo = 0.0;
-    bars.x_hi = std::max(plot.harmonics, 1);
-    bars.y_lo = 0.0;
-    bars.y_hi = a_ticks.hi;
-    drawYAxis(svg, bars, a_ticks);
-    const double group = (bars.right - bars.left) / std::max(plot.harmonics, 1);
-    const double bar = std::min(9.0, group * 0.8 / 3.0);
-    // Label every harmonic when they fit, else every other one.
-    const int label_every = group >= 18.0 ? 1 : 2;
-    for (int n = 1; n <= plot.harmonics; ++n) {
-      const double centre = bars.left + (n - 0.5) * group;
-      if ((n - 1) % label_every == 0) {
-        svg.text(centre, bars.bottom + 17.0, std::to_string(n), 11.0, kMuted, "middle");
-      }
-      for (const PlotChannel& channel : row.channels) {
-        const double a = channel.amplitude_deg[n - 1];
-        const double x0 = centre + (channel.axis - 1.5) * bar;
-        const double y0 = bars.y(a);
-        const std::string colour = kAxisColour[channel.axis];
-        if (channel.kept[n - 1]) {
-          svg.rect(x0, y0, bar, bars.bottom - y0, "class=\"kept\" fill=\"" + colour + "\"");
-        } else {
-          // Hollow: the outline drawn inside the bar's extent, so that it is the same size.
-          svg.rect(x0 + 0.6, y0 + 0.6, bar - 1.2, bars.bottom - y0 - 0.6,
-                   "class=\"discarded\" fill=\"#ffffff\" stroke=\"" + colour +
-                       "\" stroke-width=\"1.2\" stroke-opacity=\"0.75\"");
-        }
-      }
-    }
-    drawFrameBox(svg, bars);
-    svg.text((bars.left + bars.right) / 2, bars.bottom + 36.0,
-             "harmonic n (\u00d7 stride frequency)", 12.0, kMuted, "middle");
-    const double bar_mid = (bars.top + bars.bottom) / 2;
-    const double label_x = kBarLeft - 50.0;
-    svg.text(label_x, bar_mid, "degrees", 12.0, kMuted, "middle",
-             " transform=\"rotate(-90 " + number(label_x, 1) + " " + number(bar_mid, 1) + ")\"");
-    svg.out += "</g>\n";
+// A row's left half: the curves against the clip's frame numbers.
+void drawCurves(SvgWriter& svg, const MotionSpectrum& spectrum, const PlotData& plot,
+                const PlotRow& row, Frame curves) {
+  const int frames = static_cast<int>(plot.times_s.size());
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (const PlotChannel& channel : row.channels) {
+    for (double v : channel.original_deg) lo = std::min(lo, v), hi = std::max(hi, v);
+    for (double v : channel.model_deg) lo = std::min(lo, v), hi = std::max(hi, v);
   }
+  if (!(lo <= hi)) lo = hi = 0.0;
+  const Ticks y_ticks = niceTicks(lo, hi, rowTickCount(curves), true);
+  const double first = plot.first_frame;
+  const double last = plot.first_frame + std::max(frames - 1, 1);
+  const int x_count = static_cast<int>((curves.right - curves.left) / 56.0);
+  const Ticks x_ticks = niceTicks(first, last, x_count, false, 1.0);
+  curves.x_lo = first;
+  curves.x_hi = last;
+  curves.y_lo = y_ticks.lo;
+  curves.y_hi = y_ticks.hi;
+  for (double v : x_ticks.values) {
+    const double xp = curves.x(v);
+    svg.line(xp, curves.top, xp, curves.bottom, kGrid, 1.0);
+    svg.line(xp, curves.bottom, xp, curves.bottom + 4.0, kAxisLine, 1.0);
+    svg.text(xp, curves.bottom + 17.0, number(v, 0), 11.0, kMuted, "middle");
+  }
+  drawYAxis(svg, curves, y_ticks);
+  // Stride boundaries inside a multi-stride window.
+  for (int s = 1; s < spectrum.window.strides; ++s) {
+    const double t = spectrum.window.start_s + s * spectrum.period_s;
+    const double xp = curves.x(t / spectrum.signals.frame_time);
+    svg.line(xp, curves.top, xp, curves.bottom, "#9a9a9a", 1.0, " stroke-dasharray=\"2 3\"");
+  }
+  drawFrameBox(svg, curves);
+  svg.text((curves.left + curves.right) / 2, curves.bottom + 36.0, "frame", 12.0, kMuted, "middle");
+  const double mid_y = (curves.top + curves.bottom) / 2;
+  svg.text(28, mid_y, "degrees", 12.0, kMuted, "middle",
+           " transform=\"rotate(-90 28 " + number(mid_y, 1) + ")\"");
+  std::vector<double> xs(frames);
+  for (int i = 0; i < frames; ++i) xs[i] = plot.first_frame + i;
+  // Originals first (wide and pale), then every model on top, so that no original hides a
+  // model.
+  for (const PlotChannel& channel : row.channels) {
+    svg.polyline(curves, xs, channel.original_deg,
+                 std::string("class=\"original\" stroke=\"") + kAxisColour[channel.axis] +
+                     "\" stroke-width=\"4\" stroke-opacity=\"0.35\" stroke-linejoin=\"round\" "
+                     "stroke-linecap=\"round\"");
+  }
+  for (const PlotChannel& channel : row.channels) {
+    svg.polyline(curves, xs, channel.model_deg,
+                 std::string("class=\"model\" stroke=\"") + kAxisColour[channel.axis] +
+                     "\" stroke-width=\"1.8\" stroke-dasharray=\"6 4\" stroke-linejoin=\"round\"");
+  }
+}
+
+// A row's right half: the amplitude of each harmonic, x y z side by side, kept ones filled.
+void drawBars(SvgWriter& svg, const PlotData& plot, const PlotRow& row, Frame bars) {
+  double most = 0.0;
+  for (const PlotChannel& channel : row.channels) {
+    for (double a : channel.amplitude_deg) most = std::max(most, a);
+  }
+  const Ticks a_ticks = niceTicks(0.0, std::max(most, 1e-3), rowTickCount(bars), true);
+  bars.x_lo = 0.0;
+  bars.x_hi = std::max(plot.harmonics, 1);
+  bars.y_lo = 0.0;
+  bars.y_hi = a_ticks.hi;
+  drawYAxis(svg, bars, a_ticks);
+  const double group = (bars.right - bars.left) / std::max(plot.harmonics, 1);
+  const double bar = std::min(9.0, group * 0.8 / 3.0);
+  // Label every harmonic when they fit, else every other one.
+  const int label_every = group >= 18.0 ? 1 : 2;
+  for (int n = 1; n <= plot.harmonics; ++n) {
+    const double centre = bars.left + (n - 0.5) * group;
+    if ((n - 1) % label_every == 0) {
+      svg.text(centre, bars.bottom + 17.0, std::to_string(n), 11.0, kMuted, "middle");
+    }
+    for (const PlotChannel& channel : row.channels) {
+      const double a = channel.amplitude_deg[n - 1];
+      const double x0 = centre + (channel.axis - 1.5) * bar;
+      const double y0 = bars.y(a);
+      const std::string colour = kAxisColour[channel.axis];
+      if (channel.kept[n - 1]) {
+        svg.rect(x0, y0, bar, bars.bottom - y0, "class=\"kept\" fill=\"" + colour + "\"");
+      } else {
+        // Hollow: the outline drawn inside the bar's extent, so that it is the same size.
+        svg.rect(x0 + 0.6, y0 + 0.6, bar - 1.2, bars.bottom - y0 - 0.6,
+                 "class=\"discarded\" fill=\"#ffffff\" stroke=\"" + colour +
+                     "\" stroke-width=\"1.2\" stroke-opacity=\"0.75\"");
+      }
+    }
+  }
+  drawFrameBox(svg, bars);
+  svg.text((bars.left + bars.right) / 2, bars.bottom + 36.0, "harmonic n (\u00d7 stride frequency)",
+           12.0, kMuted, "middle");
+  const double bar_mid = (bars.top + bars.bottom) / 2;
+  const double label_x = kBarLeft - 50.0;
+  svg.text(label_x, bar_mid, "degrees", 12.0, kMuted, "middle",
+           " transform=\"rotate(-90 " + number(label_x, 1) + " " + number(bar_mid, 1) + ")\"");
+}
+
+// One joint's row: header, curves on the left, harmonic bars on the right.
+void drawRow(SvgWriter& svg, const MotionSpectrum& spectrum, const PlotData& plot, int r) {
+  const PlotRow& row = plot.rows[r];
+  const double top = kTitleHeight + r * kRowHeight;
+  svg.out += "<g class=\"row\">\n";
+  drawRowHeader(svg, row, top);
+  Frame curves;
+  curves.left = kCurveLeft;
+  curves.right = kCurveRight;
+  curves.top = top + kPlotTop;
+  curves.bottom = top + kRowHeight - kPlotBottom;
+  drawCurves(svg, spectrum, plot, row, curves);
+  Frame bars;
+  bars.left = kBarLeft;
+  bars.right = kBarRight;
+  bars.top = curves.top;
+  bars.bottom = curves.bottom;
+  drawBars(svg, plot, row, bars);
+  svg.out += "</g>\n";
+}
+
+}  // namespace
+
+std::string renderPlotSvg(const MotionSpectrum& spectrum, const PlotData& plot) {
+  const int rows = static_cast<int>(plot.rows.size());
+  const double height = kTitleHeight + rows * kRowHeight + kBottomMargin;
+  SvgWriter svg;
+  svg.out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  svg.out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" +
+             number(kWidth, 0) + "\" height=\"" + number(height, 0) + "\" viewBox=\"0 0 " +
+             number(kWidth, 0) + " " + number(height, 0) + "\">\n";
+  svg.out += "<title>" + xmlEscape(plot.clip_name) + ": harmonic model</title>\n";
+  svg.rect(0, 0, kWidth, height, "fill=\"#ffffff\"");
+  svg.out += std::string("<g font-family=\"") + kFont + "\">\n";
+  drawTitle(svg, spectrum, plot);
+  drawLegend(svg);
+  for (int r = 0; r < rows; ++r) drawRow(svg, spectrum, plot, r);
   svg.out += "</g>\n</svg>\n";
   return svg.out;
 }

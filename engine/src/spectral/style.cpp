@@ -357,9 +357,9 @@ Result<StyleScores> scoreStyle(const motion::Skeleton& skeleton, const TargetMot
   const auto features = [&](const TargetMotion& target) {
     std::vector<double> f;
     for (int j : carriage) {
-      glm::dquat relative = glm::conjugate(mean_posture[j]) * target.base_rotations[j];
-      if (relative.w < 0.0) relative = -relative;  // the short way (q and -q are one rotation)
-      const glm::dvec3 v = rotationVector(relative);
+      // The short way (q and -q are one rotation).
+      const glm::dvec3 v =
+          shortRotationVector(glm::conjugate(mean_posture[j]) * target.base_rotations[j]);
       f.insert(f.end(), {v.x, v.y, v.z});
     }
     return f;
@@ -380,9 +380,8 @@ RelativeStyle relativeStyle(const motion::Skeleton& skeleton, const TargetMotion
                             const TargetMotion& styled) {
   RelativeStyle style;
   for (int j : carriageJoints(skeleton)) {
-    glm::dquat relative = glm::conjugate(neutral.base_rotations[j]) * styled.base_rotations[j];
-    if (relative.w < 0.0) relative = -relative;
-    const glm::dvec3 v = rotationVector(relative);
+    const glm::dvec3 v =
+        shortRotationVector(glm::conjugate(neutral.base_rotations[j]) * styled.base_rotations[j]);
     style.posture.insert(style.posture.end(), {v.x, v.y, v.z});
   }
   const int pelvis = motion::pelvisJoint(skeleton);

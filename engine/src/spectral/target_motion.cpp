@@ -107,7 +107,7 @@ void TargetMotion::pose(double t, std::span<glm::dquat> rotations,
     }
   }
   for (const SecondaryTerm& term : secondary) {
-    vectors[term.joint][term.axis] += term.amplitude * std::sin(term.omega * t + term.phase);
+    vectors[term.joint][term.axis] += sinusoid(term.amplitude, term.omega, term.phase, t);
     rotates[term.joint] = true;
   }
   for (int j = 0; j < joints; ++j) {

@@ -84,6 +84,26 @@ struct Foot {
                                   // first, then the toe as a flat foot rolls over)
 };
 
+// World positions of every joint and End Site over a clip's first frames: what finding feet and
+// their contacts reads.
+struct Poses {
+  int joints = 0;
+  std::vector<glm::dvec3> joint;  // (frames x joints) metres
+  std::vector<glm::dvec3> site;   // (frames x joints) End Site, or the joint when it has none
+
+  const glm::dvec3& at(int frame, const FootPoint& p) const {
+    const size_t n = static_cast<size_t>(frame) * joints + p.joint;
+    return p.end_site ? site[n] : joint[n];
+  }
+};
+
+// Precondition: clip validated against the skeleton, frames <= clip.frame_count.
+Poses computePoses(const Skeleton& skeleton, const Clip& clip, int frames);
+
+// A vector's horizontal part (Y up), and the figure's left for a travel direction: up x forward.
+glm::dvec3 horizontal(const glm::dvec3& v);
+glm::dvec3 leftOf(const glm::dvec3& forward);
+
 // Chain ends of the leg chains: joints named foot, ankle, toe, paw or hoof (the uppermost such
 // joint of each chain); and, for legs those names miss (a dog's front legs end in "Hand"),
 // chain ends lying on the ground in the first frame in branches of their own below the pelvis.

@@ -25,8 +25,53 @@ struct HarmonicSeries {
   std::vector<Harmonic> strongest(int k) const;
 };
 
-// Evaluates A + sum B sin(n omega0 t + D) over `terms`.
+// The one evaluator of Fourier series theta(t) = A + sum B sin(omega t + D): the spectral model,
+// the target motion, plots and the editor's curves call these (the physics controller's
+// FourierTargets repeats FourierEvaluator's arithmetic; it is to use it).
+
+// One term, B sin(omega t + D): omega = n omega0 for a harmonic, a secondary term's own omega.
+double sinusoid(double amplitude, double omega, double phase, double t);
+
+// A + sum B sin(n omega0 t + D) over `terms`, one sin per term (exact at any t), and its time
+// derivative sum B n omega0 cos(n omega0 t + D), the channel's unit per second.
 double evaluate(double mean, std::span<const Harmonic> terms, double omega0, double t);
+double evaluateVelocity(std::span<const Harmonic> terms, double omega0, double t);
+
+// A harmonic as B cos D and B sin D: B sin(n x + D) = B cos D sin(n x) + B sin D cos(n x).
+struct CartesianHarmonic {
+  int n = 1;           // harmonic number, >= 1
+  double b_cos = 0.0;  // B cos D, the channel's unit
+  double b_sin = 0.0;  // B sin D
+};
+CartesianHarmonic cartesian(const Harmonic& h);
+
+// Many channels' series at one time from one sincos: sin(n x) and cos(n x) for every n by the
+// angle-addition recurrence instead of one sin per term (its rounding grows with n, to 1e-14 rad
+// by n = 64). For evaluating every channel at many times (the analysis' model, frame by frame).
+class FourierEvaluator {
+ public:
+  struct Channel {
+    double mean = 0.0;                     // A
+    std::vector<CartesianHarmonic> terms;  // the kept harmonics, any order
+  };
+
+  // omega0: the fundamental, rad/s.
+  FourierEvaluator(double omega0, std::vector<Channel> channels);
+
+  // Sets the time (seconds from the series' origin) that value and velocity answer for.
+  void setTime(double t);
+  // Channel c's A + sum B sin(n omega0 t + D) and its derivative (per second), at that time.
+  // Precondition: c < channelCount().
+  double value(size_t c) const;
+  double velocity(size_t c) const;
+  size_t channelCount() const { return channels_.size(); }
+
+ private:
+  double omega0_ = 0.0;
+  std::vector<Channel> channels_;
+  std::vector<double> sines_;    // (highest n + 1) sin(n omega0 t)
+  std::vector<double> cosines_;  // (highest n + 1) cos(n omega0 t)
+};
 
 // Measures the series of `samples`, which cover exactly `periods` whole periods at even spacing
 // (sample i at t = i * period * periods / size). Harmonic n sits at DFT bin n * periods; bins

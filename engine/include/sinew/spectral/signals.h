@@ -10,6 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "sinew/core/rotation.h"
 #include "sinew/motion/clip.h"
 #include "sinew/motion/skeleton.h"
 
@@ -48,11 +49,7 @@ MotionSignals extractSignals(const motion::Skeleton& skeleton, const motion::Cli
 // Precondition: values not empty.
 double catmullRomAt(const std::vector<double>& values, double frame);
 
-// The angle between two rotations, radians in [0, pi]; exact for tiny angles (acos is not).
-double angleBetween(const glm::dquat& a, const glm::dquat& b);
-
-// The rotation vector (axis * angle, radians) of a unit quaternion, and back.
-glm::dvec3 rotationVector(const glm::dquat& q);
-glm::dquat fromRotationVector(const glm::dvec3& v);
+// Rotation maths lives in core/rotation.h; the name stays here for physics/tracking.cpp.
+using ::sinew::fromRotationVector;
 
 }  // namespace sinew::spectral
