@@ -76,8 +76,8 @@ void worldBetweenFrames(const motion::Skeleton& skeleton, const motion::Clip& cl
   motion::worldTransforms(skeleton, pose, 0, out);
 }
 
-// The bind-pose meshes' extent along `direction` (unit), drawn metres.
-float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction, double scale) {
+// The bind-pose meshes' extent along `direction` (unit), metres.
+float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction) {
   float lo = 1e30f, hi = -1e30f;
   for (const motion::SkinnedMesh& mesh : asset.meshes) {
     const size_t step = std::max<size_t>(1, mesh.positions.size() / kBoundsSamples);
@@ -87,15 +87,7 @@ float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction, do
       hi = std::max(hi, glm::dot(p, direction));
     }
   }
-  return hi > lo ? (hi - lo) * static_cast<float>(scale) : 0.0f;
-}
-
-// Every transform in `world` moved into drawn metres.
-void applyScale(std::vector<glm::dmat4>& world, double scale) {
-  if (scale == 1.0) return;
-  glm::dmat4 display(scale);
-  display[3][3] = 1.0;
-  for (glm::dmat4& m : world) m = display * m;
+  return hi > lo ? hi - lo : 0.0f;
 }
 
 // The joints above the pelvis (pelvisJoint): a root that only carries the hips, often left at
@@ -149,22 +141,6 @@ void growBounds(Scene& scene, const std::vector<CapsuleInstance>& capsules) {
 
 }  // namespace
 
-double displayScale(const motion::MotionAsset& asset, double* extent_out) {
-  double extent = restExtent(asset.skeleton);
-  for (const motion::SkinnedMesh& mesh : asset.meshes) {
-    glm::dvec3 lo(1e30), hi(-1e30);
-    const size_t step = std::max<size_t>(1, mesh.positions.size() / kBoundsSamples);
-    for (size_t v = 0; v < mesh.positions.size(); v += step) {
-      const glm::dvec3 q(mesh.mesh_to_world * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-    if (!mesh.positions.empty()) extent = std::max({extent, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  }
-  if (extent_out != nullptr) *extent_out = extent;
-  return extent > kImplausibleCharacterSize_m ? 0.01 : 1.0;
-}
-
 Scene buildScene(const EditorState& state) {
   Scene scene;
   scene.shadows = state.view.shadows;
@@ -173,9 +149,7 @@ Scene buildScene(const EditorState& state) {
   const motion::MotionAsset& asset = *state.asset;
   const motion::Skeleton& skeleton = asset.skeleton;
   const int joints = skeleton.jointCount();
-  scene.display_scale = displayScale(asset);
-  const double scale = scene.display_scale;
-  const float height = static_cast<float>(std::max(restExtent(skeleton) * scale, 0.1));
+  const float height = static_cast<float>(std::max(restExtent(skeleton), 0.1));
   const float radius = 0.022f * height;
 
   // The original at the playback time, between the two frames around it.
@@ -193,11 +167,10 @@ Scene buildScene(const EditorState& state) {
       SkinnedDraw draw;
       draw.mesh = static_cast<int>(m);
       draw.skinning.resize(static_cast<size_t>(joints));
-      skinningMatrices(mesh, world0, scale, draw.skinning);
+      skinningMatrices(mesh, world0, draw.skinning);
       scene.skinned.push_back(std::move(draw));
     }
   }
-  applyScale(world0, scale);
   const int pelvis = joints > 0 ? motion::pelvisJoint(skeleton) : 0;
   scene.root = glm::vec3(world0[pelvis][3]);
   if (state.view.show_original) {
@@ -226,7 +199,6 @@ Scene buildScene(const EditorState& state) {
                   pose.translations);
       std::vector<glm::dmat4> model_world(static_cast<size_t>(joints));
       motion::worldTransforms(skeleton, pose, 0, model_world);
-      applyScale(model_world, scale);
       // Beside: to the character's side, perpendicular to its travel on the ground.
       glm::vec3 offset(0.0f);
       if (state.view.model_beside) {
@@ -238,7 +210,7 @@ Scene buildScene(const EditorState& state) {
         // Clear of the mesh when the original is drawn as one (arms out, a tail): the model's
         // skeleton is about as wide, so a full mesh width and a tenth apart.
         float apart = 0.45f * height;
-        if (!scene.skinned.empty()) apart = std::max(apart, 1.1f * meshWidth(asset, side, scale));
+        if (!scene.skinned.empty()) apart = std::max(apart, 1.1f * meshWidth(asset, side));
         offset = side * apart;
       }
       appendBones(skeleton, model_world, offset, radius, state.view.show_end_sites,
@@ -275,7 +247,6 @@ Scene buildScene(const EditorState& state) {
       const double t = std::fmod(state.playback.time_s, duration);
       const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
       motion::worldTransforms(skeleton, run, f, run_world);
-      applyScale(run_world, scale);
       // Travel removed (the run stays beside the clip), height and falls kept.
       glm::vec3 offset = scene.root - glm::vec3(run_world[pelvis][3]);
       offset.y = 0.0f;
