@@ -225,7 +225,7 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   json document;
   try {
     document = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number past double's range
     return Status::error(name + ": not JSON: " + e.what());
   }
   const std::string where = name + ": ";
