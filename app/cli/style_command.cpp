@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 #include "sinew/spectral/style.h"
 #include "sinew/spectral/target_io.h"
 
@@ -34,6 +35,11 @@ struct StyleArgs {
   ImportFlags import;
 };
 
+// A label or clip name from a file name: paths are bytes, labels are text (shown, written in JSON).
+std::string stemLabel(const std::filesystem::path& path) {
+  return toUtf8(path.stem().string());
+}
+
 struct Loaded {
   motion::MotionAsset asset;
   spectral::TargetMotion target;
@@ -52,8 +58,7 @@ Result<Loaded> loadTarget(const std::string& path, const ImportFlags& flags) {
       spectral::analyze(asset.value().skeleton, asset.value().clips[clip.value()], settings);
   if (!spectrum.ok()) return Status::error(path + ": " + spectrum.message());
   Loaded loaded{std::move(asset).value(), {}};
-  loaded.target = spectral::targetFromSpectrum(spectrum.value(), {},
-                                               std::filesystem::path(path).stem().string());
+  loaded.target = spectral::targetFromSpectrum(spectrum.value(), {}, stemLabel(path));
   return loaded;
 }
 
@@ -78,8 +83,7 @@ int runTransfer(const StyleArgs& args) {
       !status.ok()) {
     return fail(status.message());
   }
-  const std::string label =
-      args.label.empty() ? std::filesystem::path(args.styled).stem().string() : args.label;
+  const std::string label = args.label.empty() ? stemLabel(args.styled) : toUtf8(args.label);
   Result<spectral::StyleVector> style =
       spectral::measureStyle(neutral.value().target, styled.value().target, label);
   if (!style.ok()) return fail(style.message());
@@ -129,7 +133,7 @@ bool isMotionFile(const std::filesystem::path& path) {
 
 // A folder's label for a file: its stem without a trailing take number ("happy_02" -> "happy").
 std::string labelOf(const std::filesystem::path& path) {
-  std::string stem = path.stem().string();
+  const std::string stem = stemLabel(path);
   size_t end = stem.size();
   while (end > 0 && std::isdigit(static_cast<unsigned char>(stem[end - 1]))) --end;
   while (end > 0 && (stem[end - 1] == '_' || stem[end - 1] == '-')) --end;
@@ -143,7 +147,7 @@ Result<std::vector<EntrySpec>> parseLibrary(const std::vector<std::string>& argu
   for (const std::string& argument : arguments) {
     const size_t equals = argument.find('=');
     const std::string value = equals == std::string::npos ? argument : argument.substr(equals + 1);
-    const std::string label = equals == std::string::npos ? "" : argument.substr(0, equals);
+    const std::string label = equals == std::string::npos ? "" : toUtf8(argument.substr(0, equals));
     if (equals != std::string::npos && label.empty()) {
       return Status::error("--library '" + argument + "': the label before '=' is empty");
     }
@@ -176,7 +180,7 @@ Result<std::vector<EntrySpec>> parseLibrary(const std::vector<std::string>& argu
       if (entries.size() == before) return Status::error(value + ": no styled motion files in the folder");
       continue;
     }
-    entries.push_back({label.empty() ? std::filesystem::path(value).stem().string() : label, "", value});
+    entries.push_back({label.empty() ? stemLabel(value) : label, "", value});
   }
   return entries;
 }

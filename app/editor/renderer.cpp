@@ -433,14 +433,12 @@ void Renderer::syncMeshes(const Scene& scene) {
   if (flat > 0) line += ", flat shaded (no normals in the file)";
   if (textured > 0) line += ", textured";
   messages_.push_back({LogLevel::kInfo, 0.0, line});
-  double extent = 0.0;
-  if (displayScale(asset, &extent) != 1.0) {
-    char note[256];
-    std::snprintf(note, sizeof note,
-                  "%s: the character is %.0f units across, too big for metres; drawn at 1/100 "
-                  "(read as centimetres)",
-                  file.c_str(), extent);
-    messages_.push_back({LogLevel::kInfo, 0.0, note});
+  // The importer chose the unit (anatomy, gltf_units.h); say so when it is not the file's metres.
+  if (asset.detection.frame.unit != motion::LengthUnit::kMetres) {
+    messages_.push_back({LogLevel::kInfo, 0.0,
+                         file + ": read as " +
+                             std::string(motion::unitName(asset.detection.frame.unit)) + " (" +
+                             asset.detection.reason + ")"});
   }
 }
 

@@ -77,7 +77,7 @@ void worldBetweenFrames(const motion::Skeleton& skeleton, const motion::Clip& cl
 }
 
 // The bind-pose meshes' extent along `direction` (unit), drawn metres.
-float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction, double scale) {
+float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction) {
   float lo = 1e30f, hi = -1e30f;
   for (const motion::SkinnedMesh& mesh : asset.meshes) {
     const size_t step = std::max<size_t>(1, mesh.positions.size() / kBoundsSamples);
@@ -87,15 +87,7 @@ float meshWidth(const motion::MotionAsset& asset, const glm::vec3& direction, do
       hi = std::max(hi, glm::dot(p, direction));
     }
   }
-  return hi > lo ? (hi - lo) * static_cast<float>(scale) : 0.0f;
-}
-
-// Every transform in `world` moved into drawn metres.
-void applyScale(std::vector<glm::dmat4>& world, double scale) {
-  if (scale == 1.0) return;
-  glm::dmat4 display(scale);
-  display[3][3] = 1.0;
-  for (glm::dmat4& m : world) m = display * m;
+  return hi > lo ? hi - lo : 0.0f;
 }
 
 // The joints above the pelvis (pelvisJoint): a root that only carries the hips, often left at
@@ -147,32 +139,11 @@ void growBounds(Scene& scene, const std::vector<CapsuleInstance>& capsules) {
   }
 }
 
-}  // namespace
-
-double displayScale(const motion::MotionAsset& asset, double* extent_out) {
-  double extent = restExtent(asset.skeleton);
-  for (const motion::SkinnedMesh& mesh : asset.meshes) {
-    glm::dvec3 lo(1e30), hi(-1e30);
-    const size_t step = std::max<size_t>(1, mesh.positions.size() / kBoundsSamples);
-    for (size_t v = 0; v < mesh.positions.size(); v += step) {
-      const glm::dvec3 q(mesh.mesh_to_world * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-    if (!mesh.positions.empty()) extent = std::max({extent, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  }
-  if (extent_out != nullptr) *extent_out = extent;
-  return extent > kImplausibleCharacterSize_m ? 0.01 : 1.0;
-}
-
-namespace {
-
-// What every part of the scene draws the character at: its display scale and size.
+// What every part of the scene draws the character at: its size.
 struct SceneFigure {
   const motion::MotionAsset& asset;
   int joints = 0;
-  double scale = 1.0;   // display scale (0.01 for a rig in centimetres)
-  float height = 0.1f;  // rest extent, display units
+  float height = 0.1f;  // rest extent, metres
   float radius = 0.0f;  // bone capsule radius, display units
   int pelvis = 0;
 };
@@ -203,11 +174,10 @@ void addOriginal(Scene& scene, const EditorState& state, const SceneFigure& figu
       SkinnedDraw draw;
       draw.mesh = static_cast<int>(m);
       draw.skinning.resize(static_cast<size_t>(figure.joints));
-      skinningMatrices(mesh, world0, figure.scale, draw.skinning);
+      skinningMatrices(mesh, world0, draw.skinning);
       scene.skinned.push_back(std::move(draw));
     }
   }
-  applyScale(world0, figure.scale);
   scene.root = glm::vec3(world0[figure.pelvis][3]);
   if (!state.view.show_original) return;
   if (!meshes) {
@@ -237,7 +207,6 @@ void addModel(Scene& scene, const EditorState& state, const SceneFigure& figure)
               pose.translations);
   std::vector<glm::dmat4> model_world(static_cast<size_t>(figure.joints));
   motion::worldTransforms(skeleton, pose, 0, model_world);
-  applyScale(model_world, figure.scale);
   // Beside: to the character's side, perpendicular to its travel on the ground.
   glm::vec3 offset(0.0f);
   if (state.view.model_beside) {
@@ -246,7 +215,7 @@ void addModel(Scene& scene, const EditorState& state, const SceneFigure& figure)
     // skeleton is about as wide, so a full mesh width and a tenth apart.
     float apart = 0.45f * figure.height;
     if (!scene.skinned.empty()) {
-      apart = std::max(apart, 1.1f * meshWidth(figure.asset, side, figure.scale));
+      apart = std::max(apart, 1.1f * meshWidth(figure.asset, side));
     }
     offset = side * apart;
   }
@@ -282,8 +251,7 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
     const double t = std::fmod(state.playback.time_s, duration);
     const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
     motion::worldTransforms(figure.asset.skeleton, run, f, run_world);
-    applyScale(run_world, figure.scale);
-    // Travel removed (the run stays beside the clip), height and falls kept.
+      // Travel removed (the run stays beside the clip), height and falls kept.
     glm::vec3 offset = scene.root - glm::vec3(run_world[figure.pelvis][3]);
     offset.y = 0.0f;
     offset -= side * (0.5f * figure.height * static_cast<float>(rank % kColumns + 1));
@@ -333,12 +301,9 @@ Scene buildScene(const EditorState& state) {
   if (state.clip() == nullptr) return scene;
   const motion::MotionAsset& asset = *state.asset;
   const int joints = asset.skeleton.jointCount();
-  scene.display_scale = displayScale(asset);
-  const double scale = scene.display_scale;
-  const float height = static_cast<float>(std::max(restExtent(asset.skeleton) * scale, 0.1));
-  const SceneFigure figure{asset,           joints,
-                           scale,           height,
-                           0.022f * height, joints > 0 ? motion::pelvisJoint(asset.skeleton) : 0};
+  const float height = static_cast<float>(std::max(restExtent(asset.skeleton), 0.1));
+  const SceneFigure figure{asset, joints, height, 0.022f * height,
+                           joints > 0 ? motion::pelvisJoint(asset.skeleton) : 0};
   addOriginal(scene, state, figure);
   if (state.view.show_model && state.analysis) addModel(scene, state, figure);
   std::vector<CapsuleInstance> population;

@@ -62,7 +62,6 @@ struct Scene {
   const motion::MotionAsset* asset = nullptr;  // whose meshes `skinned` poses (the state's;
                                                // valid while the state keeps the asset)
   std::vector<SkinnedDraw> skinned;          // the original as its skinned meshes
-  double display_scale = 1.0;                // drawn metres per file unit (see displayScale)
   bool shadows = true;                       // the key light casts shadows (a view toggle)
   glm::vec3 bounds_min{0.0f};                // of everything drawn but the population, metres
   glm::vec3 bounds_max{0.0f};
@@ -74,16 +73,6 @@ struct Scene {
 
 // The individual whose box the ray (from origin along unit direction) enters first, or -1.
 int pickIndividual(const Scene& scene, const glm::vec3& origin, const glm::vec3& direction);
-// A character over this size (rest pose with its meshes) is taken to be in centimetres and drawn
-// at 1/100: glTF is metres by specification, but exporters write centimetre rigs as they are (the
-// Khronos Fox measures 155 units from nose to tail). Metres.
-inline constexpr double kImplausibleCharacterSize_m = 10.0;
-
-// Drawn metres per file unit: 0.01 when the rig (joints and bind-pose meshes) is larger than
-// kImplausibleCharacterSize_m, else 1. `extent_out`, when given, receives the rig's largest
-// extent in file units.
-double displayScale(const motion::MotionAsset& asset, double* extent_out = nullptr);
-
 // The scene at the state's playback time.
 Scene buildScene(const EditorState& state);
 

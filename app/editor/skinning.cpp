@@ -7,12 +7,10 @@
 namespace sinew::editor {
 
 void skinningMatrices(const motion::SkinnedMesh& mesh, std::span<const glm::dmat4> joint_world,
-                      double scale, std::span<glm::mat4> out) {
+                      std::span<glm::mat4> out) {
   const size_t joints = std::min({joint_world.size(), mesh.inverse_bind.size(), out.size()});
-  glm::dmat4 display(scale);
-  display[3][3] = 1.0;
   for (size_t j = 0; j < joints; ++j) {
-    out[j] = glm::mat4(display * joint_world[j] * mesh.inverse_bind[j]);
+    out[j] = glm::mat4(joint_world[j] * mesh.inverse_bind[j]);
   }
 }
 

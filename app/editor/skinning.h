@@ -23,13 +23,12 @@
 
 namespace sinew::editor {
 
-// Writes, per skeleton joint, scale * joint_world[j] * mesh.inverse_bind[j]: a bind-pose vertex
-// (file units) to the drawn world (metres, after the editor's display scale).
-// `joint_world`: (joints) the pose's world transforms, file units. `scale`: the display scale
-// (1, or 0.01 for rigs whose numbers are centimetres). `out`: (joints).
+// Writes, per skeleton joint, joint_world[j] * mesh.inverse_bind[j]: a bind-pose vertex to the
+// world, metres (the importer made the rig metres: glTF units by anatomy, gltf_units.h).
+// `joint_world`: (joints) the pose's world transforms. `out`: (joints).
 // Precondition: joint_world.size() == out.size() == mesh.inverse_bind.size().
 void skinningMatrices(const motion::SkinnedMesh& mesh, std::span<const glm::dmat4> joint_world,
-                      double scale, std::span<glm::mat4> out);
+                      std::span<glm::mat4> out);
 
 // The blended position of vertex `v` under `skinning` (from skinningMatrices), as the vertex
 // shader computes it.
@@ -42,7 +41,7 @@ void growSkinnedBounds(const motion::SkinnedMesh& mesh, std::span<const glm::mat
 
 // One vertex as the GPU reads it (56 bytes, tightly packed).
 struct SkinVertex {
-  glm::vec3 position{0.0f};                   // bind pose, file units
+  glm::vec3 position{0.0f};                   // bind pose, metres
   glm::vec3 normal{0.0f, 1.0f, 0.0f};         // bind pose, unit
   glm::vec2 uv{0.0f};                         // base colour texture coordinates (0 when untextured)
   glm::u16vec4 joints{0};                     // skeleton joint indices

@@ -2,11 +2,13 @@
 
 #include <charconv>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/text.h"
 
 namespace sinew::app {
 namespace {
@@ -58,6 +60,27 @@ std::string relativeTo(const std::string& file, const std::filesystem::path& bas
   if (!path.is_absolute()) return file;
   const std::filesystem::path relative = path.lexically_relative(base);
   return relative.empty() ? file : relative.generic_string();
+}
+
+// A path as JSON text. Paths are bytes: one that is not UTF-8 (a Latin-1 folder name) is written
+// as its Latin-1 reading with "<key>_encoding": "latin1" beside it, so readPath gives back the
+// same bytes (a resumed search finds its rig; JSON itself cannot hold the bytes).
+void writePath(json& object, const std::string& key, const std::string& path) {
+  object[key] = toUtf8(path);
+  if (!isValidUtf8(path)) object[key + "_encoding"] = "latin1";
+}
+
+Status readPath(const json& object, const std::string& key, std::string& out,
+                const std::string& where) {
+  if (Status s = read(object, key.c_str(), out, where); !s.ok()) return s;
+  const std::string encoding = key + "_encoding";
+  if (!object.contains(encoding)) return Status();
+  if (object.at(encoding) != "latin1")
+    return Status::error(where + encoding + ": expected \"latin1\", got " + object.at(encoding).dump());
+  std::optional<std::string> bytes = latin1FromUtf8(out);
+  if (!bytes) return Status::error(where + key + ": not Latin-1 text, which " + encoding + " says it is");
+  out = std::move(*bytes);
+  return Status();
 }
 
 json weightsJson(const search::FitnessWeights& weights) {
@@ -202,13 +225,14 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   json document;
   try {
     document = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number past double's range
     return Status::error(name + ": not JSON: " + e.what());
   }
   const std::string where = name + ": ";
   if (Status valid = checkHeader(document, where); !valid.ok()) return valid;
   unknownKeys(document,
-              {"format", "version", "rig", "clip", "animation", "target", "harmonics",
+              {"format", "version", "rig", "rig_encoding", "clip", "clip_encoding", "animation",
+               "target", "target_encoding", "harmonics",
                "joint_harmonics", "band_gains", "styles", "secondary", "terrain", "window_s",
                "pushes", "body", "search", "view"},
               "", name, warnings);
@@ -218,10 +242,10 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     if (status.ok() && !s.ok()) status = std::move(s);
   };
   if (!document.contains("rig")) return Status::error(where + "rig: missing (the rig file)");
-  check(read(document, "rig", project.rig, where));
-  check(read(document, "clip", project.clip, where));
+  check(readPath(document, "rig", project.rig, where));
+  check(readPath(document, "clip", project.clip, where));
   check(read(document, "animation", project.animation, where));
-  check(read(document, "target", project.target, where));
+  check(readPath(document, "target", project.target, where));
   check(read(document, "harmonics", project.harmonics, where));
   check(read(document, "window_s", project.physics.window_s, where));
   std::string terrain = "flat";
@@ -261,12 +285,12 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     return Status();
   };
   Status lists = objects("styles", [&](const json& item, const std::string& in) {
-    unknownKeys(item, {"label", "neutral", "styled", "weight"}, in.substr(where.size()), name,
-                warnings);
+    unknownKeys(item, {"label", "neutral", "neutral_encoding", "styled", "styled_encoding", "weight"},
+                in.substr(where.size()), name, warnings);
     StylePair pair;
     check(read(item, "label", pair.label, in));
-    check(read(item, "neutral", pair.neutral, in));
-    check(read(item, "styled", pair.styled, in));
+    check(readPath(item, "neutral", pair.neutral, in));
+    check(readPath(item, "styled", pair.styled, in));
     check(read(item, "weight", pair.weight, in));
     if (status.ok() && (pair.neutral.empty() || pair.styled.empty()))
       return Status::error(in + "neutral/styled: both clips are needed");
@@ -343,10 +367,10 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
   json out = json::object();
   out["format"] = "sinew.project";
   out["version"] = kProjectVersion;
-  out["rig"] = relativeTo(project.rig, base);
-  if (!project.clip.empty()) out["clip"] = relativeTo(project.clip, base);
+  writePath(out, "rig", relativeTo(project.rig, base));
+  if (!project.clip.empty()) writePath(out, "clip", relativeTo(project.clip, base));
   if (!project.animation.empty()) out["animation"] = project.animation;
-  if (!project.target.empty()) out["target"] = relativeTo(project.target, base);
+  if (!project.target.empty()) writePath(out, "target", relativeTo(project.target, base));
   out["harmonics"] = project.harmonics;
   if (!project.joint_k.empty()) out["joint_harmonics"] = project.joint_k;
   const MotionEdits& edits = project.edits;
@@ -363,10 +387,10 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
   if (!edits.styles.empty()) {
     json styles = json::array();
     for (const StylePair& pair : edits.styles) {
-      styles.push_back({{"label", pair.label},
-                        {"neutral", relativeTo(pair.neutral, base)},
-                        {"styled", relativeTo(pair.styled, base)},
-                        {"weight", pair.weight}});
+      json item = {{"label", pair.label}, {"weight", pair.weight}};
+      writePath(item, "neutral", relativeTo(pair.neutral, base));
+      writePath(item, "styled", relativeTo(pair.styled, base));
+      styles.push_back(std::move(item));
     }
     out["styles"] = styles;
   }

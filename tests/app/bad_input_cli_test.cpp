@@ -77,6 +77,50 @@ TEST(CliBadInput, EvolveOnALatin1RigWritesItsResults) {
   EXPECT_EQ(history.find("nan"), std::string::npos);
 }
 
+// The checkpoint stores the rig's path as text; a Latin-1 path is kept as its Latin-1 reading
+// with "rig_encoding": "latin1", so the resumed search opens the same bytes (it stored U+FFFD
+// in place of the byte, and the resume could not find the rig).
+TEST(CliBadInput, ResumeFindsALatin1RigThroughItsCheckpoint) {
+  test::TempDir dir;
+  const std::filesystem::path rig = latin1Walk(dir);
+  const test::CommandResult evolve = test::runSinew(
+      "evolve --rig " + test::quote(rig) +
+      " --generations 1 --population 4 --window 0.5 --threads 1 --out " + test::quote(dir / "out"));
+  ASSERT_EQ(evolve.exit_code, 0) << evolve.out << evolve.err;
+  const nlohmann::json checkpoint =
+      nlohmann::json::parse(test::readText(dir / "out" / "checkpoint.json"));
+  EXPECT_EQ(checkpoint["problem"]["rig_encoding"], "latin1");
+  EXPECT_NE(checkpoint["problem"]["rig"].get<std::string>().find("walk_\xC3\xA9.bvh"),
+            std::string::npos);
+  const test::CommandResult resumed = test::runSinew(
+      "evolve --resume " + test::quote(dir / "out" / "checkpoint.json") +
+      " --generations 2 --threads 1 --out " + test::quote(dir / "more"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err << resumed.out;
+  EXPECT_NE(resumed.out.find("gen   2"), std::string::npos) << resumed.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "more" / "best.bvh"));
+}
+
+// Style labels come from file names when not given; a Latin-1 name becomes a UTF-8 label.
+TEST(CliBadInput, StyleLabelsFromLatin1FileNamesAreUtf8) {
+  test::TempDir dir;
+  const std::filesystem::path tired = dir / "m\xFC""de.bvh";  // "müde" with ü as one byte
+  std::filesystem::copy_file(walkPath(), tired);
+  const test::CommandResult transfer =
+      test::runSinew("style --neutral " + walk() + " --styled " + test::quote(tired) + " -o " +
+                     test::quote(dir / "t.json"));
+  ASSERT_EQ(transfer.exit_code, 0) << transfer.err;  // was an abort writing the JSON
+  const std::string target = test::readText(dir / "t.json");
+  ASSERT_FALSE(nlohmann::json::parse(target, nullptr, false).is_discarded());
+  EXPECT_NE(target.find("m\xC3\xBC""de"), std::string::npos);
+
+  const test::CommandResult measure =
+      test::runSinew("style --measure " + walk() + " --library " + test::quote(tired) +
+                     " --json " + test::quote(dir / "m.json"));
+  ASSERT_EQ(measure.exit_code, 0) << measure.err;
+  const nlohmann::json scores = nlohmann::json::parse(test::readText(dir / "m.json"));
+  EXPECT_EQ(scores["closest"], "m\xC3\xBC""de") << scores.dump();
+}
+
 TEST(CliBadInput, ByteOrderMarkIsAccepted) {
   test::TempDir dir;
   test::writeText(dir / "bom.bvh", "\xEF\xBB\xBF" + test::readText(walkPath()));

@@ -128,6 +128,13 @@ TEST(ProjectFileTest, BadProjectsNameTheFileAndTheField) {
       {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "band_gains": {"gait": {"tail": 1}}})",
        "band_gains.gait: unknown group 'tail'"},
       {R"({"format": "sinew.project", "version": 2, "rig": )", "not JSON"},
+      // project_fuzz's first finding: a number past double's range escaped as an exception.
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "window_s": 1e603})",
+       "not JSON: [json.exception.out_of_range.406] number overflow"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "rig_encoding": "koi8"})",
+       "rig_encoding: expected \"latin1\""},
+      {R"({"format": "sinew.project", "version": 2, "rig": "\u20ac.bvh", "rig_encoding": "latin1"})",
+       "rig: not Latin-1 text"},
   };
   for (const Case& c : cases) {
     const std::filesystem::path file = dir / "bad.sinew.json";

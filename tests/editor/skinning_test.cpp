@@ -1,6 +1,6 @@
 // Linear blend skinning on the CPU (the matrices the vertex shader blends): invalid input first,
 // then the real rigs. In the bind pose every vertex must land where the file puts the mesh
-// (mesh_to_world * position): Fox (identity mesh node, centimetre numbers) and RiggedFigure (a
+// (mesh_to_world * position): Fox (identity mesh node, centimetres made metres) and RiggedFigure (a
 // Z-up -> Y-up rotation on the mesh node). Posed, a vertex moves rigidly with its joints.
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@ motion::MotionAsset loadShared(const std::string& name) {
   return asset.ok() ? std::move(asset).value() : motion::MotionAsset{};
 }
 
-// The largest extent of the mesh where the file puts it, file units.
+// The largest extent of the mesh where the file puts it, metres.
 double meshExtent(const motion::SkinnedMesh& mesh) {
   glm::dvec3 lo(1e30), hi(-1e30);
   for (const glm::vec3& p : mesh.positions) {
@@ -38,7 +38,7 @@ double meshExtent(const motion::SkinnedMesh& mesh) {
 double bindPoseError(const motion::MotionAsset& asset, const motion::SkinnedMesh& mesh) {
   const std::vector<glm::dmat4> rest = motion::restWorldTransforms(asset.skeleton);
   std::vector<glm::mat4> skinning(rest.size());
-  skinningMatrices(mesh, rest, 1.0, skinning);
+  skinningMatrices(mesh, rest, skinning);
   double worst = 0.0;
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     const glm::dvec3 expected(mesh.mesh_to_world * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
@@ -50,7 +50,7 @@ double bindPoseError(const motion::MotionAsset& asset, const motion::SkinnedMesh
 TEST(EditorSkinning, EmptyAndDegenerateInputDoNothingOrKeepDefaults) {
   motion::SkinnedMesh mesh;  // no vertices, no joints
   std::vector<glm::mat4> out;
-  skinningMatrices(mesh, {}, 1.0, out);
+  skinningMatrices(mesh, {}, out);
   glm::vec3 lo(1.0f), hi(-1.0f);
   growSkinnedBounds(mesh, out, 100, lo, hi);
   EXPECT_EQ(lo, glm::vec3(1.0f));  // an empty mesh leaves the box alone
@@ -72,18 +72,16 @@ TEST(EditorSkinning, EmptyAndDegenerateInputDoNothingOrKeepDefaults) {
   for (const SkinVertex& v : untextured.vertices) EXPECT_EQ(v.uv, glm::vec2(0.0f));
 }
 
-TEST(EditorSkinning, MatricesAreDisplayScaleTimesWorldTimesInverseBind) {
+TEST(EditorSkinning, MatricesAreWorldTimesInverseBind) {
   motion::SkinnedMesh mesh;
   mesh.inverse_bind = {glm::translate(glm::dmat4(1.0), glm::dvec3(0, -2, 0)),
                        glm::rotate(glm::dmat4(1.0), 0.5, glm::dvec3(0, 0, 1))};
   const std::vector<glm::dmat4> world = {glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3)),
                                          glm::rotate(glm::dmat4(1.0), -0.5, glm::dvec3(0, 0, 1))};
   std::vector<glm::mat4> out(2);
-  skinningMatrices(mesh, world, 0.01, out);
+  skinningMatrices(mesh, world, out);
   for (size_t j = 0; j < 2; ++j) {
-    glm::dmat4 expected = world[j] * mesh.inverse_bind[j];
-    for (int c = 0; c < 3; ++c) expected[c] *= 0.01;
-    expected[3] = glm::dvec4(glm::dvec3(expected[3]) * 0.01, 1.0);
+    const glm::dmat4 expected = world[j] * mesh.inverse_bind[j];
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) EXPECT_NEAR(out[j][c][r], expected[c][r], 1e-7) << j;
     }
@@ -105,8 +103,10 @@ TEST(EditorSkinning, FoxBindPoseGivesTheMeshAsTheFilePlacesIt) {
   ASSERT_EQ(mesh.positions.size(), 1728u);
   const double error = bindPoseError(fox, mesh);
   std::cout << "Fox bind pose: worst vertex " << error << " of the mesh's " << meshExtent(mesh)
-            << "-unit extent\n";
+            << " m extent\n";
   EXPECT_LT(error, 1e-4);
+  // Centimetres in the file, metres here: nose to tail 155 cm, a fox (with its tail).
+  EXPECT_NEAR(meshExtent(mesh), 1.55, 0.01);
 }
 
 TEST(EditorSkinning, RiggedFigureBindPoseIgnoresTheMeshNodeAsGltfSays) {
@@ -123,7 +123,7 @@ TEST(EditorSkinning, RiggedFigureBindPoseIgnoresTheMeshNodeAsGltfSays) {
 }
 
 // Posed, each vertex bound to one joint keeps its place in that joint's frame, so its distance
-// to the joint is the bind pose's (with the display scale applied); and the whole mesh moves.
+// to the joint is the bind pose's; and the whole mesh moves.
 TEST(EditorSkinning, FoxWalkMovesVerticesRigidlyWithTheirJoint) {
   SINEW_REQUIRE_SHARED_DATA();
   const motion::MotionAsset fox = loadShared("Fox.glb");
@@ -135,27 +135,26 @@ TEST(EditorSkinning, FoxWalkMovesVerticesRigidlyWithTheirJoint) {
   const std::vector<glm::dmat4> rest = motion::restWorldTransforms(fox.skeleton);
   std::vector<glm::dmat4> world(rest.size());
   std::vector<glm::mat4> skinning(rest.size());
-  const double scale = 0.01;
   int rigid = 0;
   double worst = 0.0, moved = 0.0;
   for (int frame : {0, 5, 11, clip.frame_count - 1}) {
     motion::worldTransforms(fox.skeleton, clip, frame, world);
-    skinningMatrices(mesh, world, scale, skinning);
+    skinningMatrices(mesh, world, skinning);
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
       const glm::vec3 p = skinPoint(mesh, skinning, v);
-      moved = std::max(moved, static_cast<double>(glm::length(p - mesh.positions[v] * 0.01f)));
+      moved = std::max(moved, static_cast<double>(glm::length(p - mesh.positions[v])));
       if (mesh.weights[v][0] < 0.999f) continue;
       const int j = mesh.joints[v][0];
       const double bind = glm::length(glm::dvec3(mesh.positions[v]) - glm::dvec3(rest[j][3]));
-      const double posed = glm::length(glm::dvec3(p) - glm::dvec3(world[j][3]) * scale);
-      worst = std::max(worst, std::abs(posed - bind * scale));
+      const double posed = glm::length(glm::dvec3(p) - glm::dvec3(world[j][3]));
+      worst = std::max(worst, std::abs(posed - bind));
       ++rigid;
     }
   }
   std::cout << "Fox Walk: " << rigid << " single-joint vertex poses, worst change in distance to "
             << "the joint " << worst * 1000.0 << " mm; vertices moved up to " << moved << " m\n";
   EXPECT_GT(rigid, 1000);
-  EXPECT_LT(worst, 1e-5);  // metres, drawn: float rounding only
+  EXPECT_LT(worst, 1e-5);  // metres: float rounding only
   EXPECT_GT(moved, 0.05);  // the walk really moves the mesh (feet swing tens of centimetres)
 }
 

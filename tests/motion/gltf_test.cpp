@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/motion/anatomy.h"
 #include "sinew/motion/bvh.h"
 #include "sinew/motion/gltf.h"
 #include "support/test_support.h"
@@ -396,9 +397,8 @@ TEST(GltfImportTest, FoxSkeletonAnimationsAndFrameTimes) {
   EXPECT_TRUE(fox.gltf->binary);
   EXPECT_EQ(fox.gltf->node_of_joint.size(), 25u);
   EXPECT_EQ(fox.gltf->node_of_joint[0], 0);  // "root" is node 0
-  EXPECT_EQ(fox.detection.frame.unit, LengthUnit::kMetres);
+  EXPECT_EQ(fox.detection.frame.unit, LengthUnit::kCentimetres);  // GltfUnitsTest says why
   EXPECT_EQ(fox.detection.frame.up, UpAxis::kY);
-  EXPECT_EQ(fox.detection.reason, "glTF is metres, Y-up by specification");
 
   ASSERT_EQ(fox.clips.size(), 3u);
   EXPECT_EQ(fox.clips[0].name, "Survey");
@@ -791,6 +791,196 @@ TEST(GltfCorruptTest, TruncatedAndDamagedFilesNeverCrash) {
     }
   }
   EXPECT_GE(refused, 9);  // at least every truncation
+}
+
+// ================================================================================================
+// Units: glTF states metres, exporters do not always keep to it
+
+// A 170 cm human in centimetre numbers under an "Armature" node scaled 0.01 (what Blender writes
+// for an armature scaled to metres): hips 90 cm up, feet on the ground, head and hands above.
+// The skinned triangle's node hangs under the armature too, so its vertices are centimetres and
+// the inverse bind matrices the bind pose's (inverse joint world times mesh world). One
+// animation moves the hips 100 cm forward in 1 s.
+DocBuilder armatureDocument() {
+  DocBuilder b;
+  auto node = [](const char* name, glm::dvec3 t, std::vector<int> children) {
+    json n = {{"name", name}, {"translation", {t.x, t.y, t.z}}};
+    if (!children.empty()) n["children"] = children;
+    return n;
+  };
+  json armature = {{"name", "Armature"},
+                   {"scale", {0.01, 0.01, 0.01}},
+                   {"children", json::array({1, 10})}};
+  b.doc["nodes"] = json::array(
+      {armature, node("Hips", {0, 90, 0}, {2, 4, 6}), node("LeftUpLeg", {10, -5, 0}, {3}),
+       node("LeftFoot", {0, -85, 0}, {}), node("RightUpLeg", {-10, -5, 0}, {5}),
+       node("RightFoot", {0, -85, 0}, {}), node("Spine", {0, 30, 0}, {7, 8, 9}),
+       node("Head", {0, 50, 0}, {}), node("LeftHand", {40, 20, 0}, {}),
+       node("RightHand", {-40, 20, 0}, {}), json{{"name", "Body"}, {"mesh", 0}, {"skin", 0}}});
+  b.doc["scenes"] = json::array({{{"nodes", json::array({0})}}});
+  b.doc["scene"] = 0;
+  // Rest world transforms of the nine joints (nodes 1..9), all under the armature's 0.01.
+  const glm::dmat4 armature_world = glm::scale(glm::dmat4(1.0), glm::dvec3(0.01));
+  std::vector<glm::dmat4> world(10, armature_world);
+  std::vector<float> inverse_bind;
+  for (int n = 1; n <= 9; ++n) {
+    const json& t = b.doc["nodes"][n]["translation"];
+    int parent = 0;
+    for (int p = 0; p <= 9; ++p) {
+      for (const json& c : b.doc["nodes"][p].value("children", json::array()))
+        if (c == n) parent = p;
+    }
+    world[n] = world[parent] * glm::translate(glm::dmat4(1.0), glm::dvec3(t[0], t[1], t[2]));
+    const glm::dmat4 m = glm::inverse(world[n]) * armature_world;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) inverse_bind.push_back(static_cast<float>(m[c][r]));
+  }
+  const int ibm = b.floats(inverse_bind, "MAT4", 16);
+  b.doc["skins"] = json::array(
+      {{{"joints", json::array({1, 2, 3, 4, 5, 6, 7, 8, 9})}, {"inverseBindMatrices", ibm}}});
+  const int positions = b.floats({0, 90, 0, 10, 90, 0, 0, 100, 0}, "VEC3", 3);
+  const int joints = b.accessorOf(std::vector<unsigned char>(12, 0), 5121, "VEC4", 3);
+  const int weights = b.floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 4);
+  b.doc["meshes"] = json::array(
+      {{{"name", "body"},
+        {"primitives", json::array({{{"attributes", {{"POSITION", positions},
+                                                     {"JOINTS_0", joints},
+                                                     {"WEIGHTS_0", weights}}}}})}}});
+  const int times = b.floats({0, 1}, "SCALAR", 1);
+  const int hips = b.floats({0, 90, 0, 0, 90, 100}, "VEC3", 3);
+  b.doc["animations"] = json::array(
+      {{{"name", "forward"},
+        {"samplers", json::array({{{"input", times}, {"output", hips}}})},
+        {"channels", json::array({{{"sampler", 0},
+                                   {"target", {{"node", 1}, {"path", "translation"}}}}})}}});
+  return b;
+}
+
+TEST(GltfUnitsTest, ArmatureScaleIsFoldedIntoMetres) {
+  test::TempDir dir;
+  const MotionAsset asset = load(armatureDocument().write(dir, "armature.gltf"));
+  const Skeleton& skeleton = asset.skeleton;
+  ASSERT_EQ(skeleton.jointCount(), 10);  // the armature and nine joints
+  EXPECT_EQ(asset.detection.frame.unit, LengthUnit::kMetres) << asset.detection.reason;
+  EXPECT_NE(asset.detection.reason.find("node scale 0.01 on 'Armature' applied"),
+            std::string::npos)
+      << asset.detection.reason;
+  EXPECT_NEAR(asset.detection.height_m, 1.7, 1e-6);
+  // The scale moved into the numbers below it: the armature is unscaled, the bones are metres.
+  EXPECT_EQ(skeleton.rest_scales[0], glm::dvec3(1.0));
+  const int hips = skeleton.findJoint("Hips"), foot = skeleton.findJoint("LeftFoot");
+  EXPECT_NEAR(glm::length(skeleton.offsets[hips] - glm::dvec3(0, 0.9, 0)), 0.0, 1e-9);
+  EXPECT_NEAR(glm::length(skeleton.offsets[foot] - glm::dvec3(0, -0.85, 0)), 0.0, 1e-9);
+  ASSERT_EQ(asset.clips.size(), 1u);
+  const Clip& clip = asset.clips[0];
+  EXPECT_TRUE(clip.scales.empty());  // the only scale was the armature's, now folded
+  const glm::dvec3 last = clip.translation(clip.frame_count - 1, hips);
+  EXPECT_NEAR(glm::length(last - glm::dvec3(0, 0.9, 1.0)), 0.0, 1e-6);
+  // The skinned triangle lands where the file puts it, in metres: hips corner at 0.9 m.
+  ASSERT_EQ(asset.meshes.size(), 1u);
+  const SkinnedMesh& mesh = asset.meshes[0];
+  const std::vector<glm::dmat4> rest = restWorldTransforms(skeleton);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const glm::dvec4 p(glm::dvec3(mesh.positions[v]), 1.0);
+    const glm::dvec3 skinned(rest[hips] * mesh.inverse_bind[hips] * p);
+    const glm::dvec3 placed(mesh.mesh_to_world * p);
+    EXPECT_NEAR(glm::length(skinned - placed), 0.0, 1e-6) << "vertex " << v;
+    if (v == 0) {
+      EXPECT_NEAR(glm::length(skinned - glm::dvec3(0, 0.9, 0)), 0.0, 1e-6);
+    }
+  }
+}
+
+TEST(GltfUnitsTest, ArmatureExportWritesTheFileNumbersBackAndReadsTheSameSize) {
+  test::TempDir dir;
+  const MotionAsset asset = load(armatureDocument().write(dir, "armature.gltf"));
+  const std::filesystem::path path = dir / "back.glb";
+  ASSERT_TRUE(saveGltf(path, asset, asset.clips[0]).ok());
+  const MotionAsset back = load(path);
+  EXPECT_EQ(back.detection.frame.unit, LengthUnit::kMetres) << back.detection.reason;
+  EXPECT_NEAR(back.detection.height_m, asset.detection.height_m, 1e-6);
+  EXPECT_LT(worstPositionError(asset, asset.clips[0], back, back.clips[0]), 1e-6);
+  // The document still holds centimetres under the 0.01 armature, keys included.
+  const Glb glb = splitGlb(test::readText(path));
+  EXPECT_NEAR(glb.doc["nodes"][0]["scale"][0].get<double>(), 0.01, 1e-9);
+  const Keys keys = channelKeys(glb, "forward", 1, "translation");
+  ASSERT_FALSE(keys.values.empty());
+  EXPECT_NEAR(keys.values[keys.values.size() - 1], 100.0f, 1e-3f);
+  EXPECT_NEAR(keys.values[1], 90.0f, 1e-3f);
+}
+
+TEST(GltfUnitsTest, UnscaledCentimetreFigureFallsBackToAnatomy) {
+  DocBuilder b = armatureDocument();
+  b.doc["nodes"][0].erase("scale");  // the same 170 "metre" human, no scale to honour
+  test::TempDir dir;
+  const MotionAsset asset = load(b.write(dir, "cm.gltf"));
+  EXPECT_EQ(asset.detection.frame.unit, LengthUnit::kCentimetres) << asset.detection.reason;
+  EXPECT_EQ(asset.detection.reason.rfind("implausible in the file's m; human", 0), 0u)
+      << asset.detection.reason;
+  EXPECT_NEAR(asset.detection.height_m, 1.7, 1e-6);
+  EXPECT_NEAR(asset.skeleton.offsets[asset.skeleton.findJoint("Hips")].y, 0.9, 1e-9);
+  EXPECT_NEAR(asset.meshes[0].positions[2].y, 1.0f, 1e-6f);  // 100 cm
+  // --units overrides: the numbers taken as millimetres make a 17 cm figure.
+  ImportOptions options;
+  options.unit = LengthUnit::kMillimetres;
+  const MotionAsset forced = load(b.write(dir, "cm.gltf"), options);
+  EXPECT_EQ(forced.detection.frame.unit, LengthUnit::kMillimetres);
+  EXPECT_NEAR(forced.detection.height_m, 0.17, 1e-6);
+  EXPECT_EQ(forced.detection.reason.rfind("unit set by the user", 0), 0u);
+}
+
+TEST(GltfUnitsTest, FoxIsCentimetresAndFoxSized) {
+  SINEW_REQUIRE_SHARED_DATA();
+  const MotionAsset fox = load(gltfData("Fox.glb"));
+  std::cout << "[ figures  ] Fox: " << unitName(fox.detection.frame.unit) << ", "
+            << fox.detection.height_m << " m (" << fox.detection.reason << ")\n";
+  EXPECT_EQ(fox.detection.frame.unit, LengthUnit::kCentimetres) << fox.detection.reason;
+  EXPECT_EQ(fox.skeleton.source.unit, LengthUnit::kCentimetres);
+  // A red fox stands 35-50 cm at the shoulder and is about 1-1.5 m from nose to tail tip.
+  const FigureMeasure figure = measureFigure(fox.skeleton, fox.clips[0], 1);
+  std::cout << "[ figures  ] Fox: hips " << figure.hip_height << " m up, " << figure.height
+            << " m tall, " << familyName(figure.family) << "\n";
+  EXPECT_GT(figure.hip_height, 0.3);
+  EXPECT_LT(figure.hip_height, 0.6);
+  ASSERT_EQ(fox.meshes.size(), 1u);
+  glm::dvec3 lo(1e30), hi(-1e30);
+  for (const glm::vec3& p : fox.meshes[0].positions) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  std::cout << "[ figures  ] Fox mesh: " << hi.z - lo.z << " m nose to tail, " << hi.y - lo.y
+            << " m tall\n";
+  EXPECT_NEAR(hi.z - lo.z, 1.547, 0.005);  // 154.7 cm in the file
+  EXPECT_NEAR(hi.y - lo.y, 0.790, 0.005);
+}
+
+TEST(GltfUnitsTest, FoxExportReadsBackAtTheSameSize) {
+  SINEW_REQUIRE_SHARED_DATA();
+  const MotionAsset fox = load(gltfData("Fox.glb"));
+  test::TempDir dir;
+  // Survey, the first clip: the size is measured on the first clip's first frame.
+  ASSERT_TRUE(saveGltf(dir / "fox.glb", fox, clipNamed(fox, "Survey")).ok());
+  const MotionAsset back = load(dir / "fox.glb");
+  EXPECT_EQ(back.detection.frame.unit, LengthUnit::kCentimetres) << back.detection.reason;
+  EXPECT_NEAR(back.detection.height_m, fox.detection.height_m, 1e-6);
+  EXPECT_LT(worstPositionError(fox, clipNamed(fox, "Survey"), back, back.clips[0]), 1e-5);
+  // The file keeps its centimetres: the hips' keys are tens of units, not tenths.
+  const Glb glb = splitGlb(test::readText(dir / "fox.glb"));
+  const int hips = back.gltf->node_of_joint[back.skeleton.findJoint("b_Hip_01")];
+  const Keys keys = channelKeys(glb, "Survey", hips, "translation");
+  ASSERT_GE(keys.values.size(), 3u);
+  EXPECT_GT(std::abs(keys.values[1]) + std::abs(keys.values[2]), 10.0f);
+}
+
+TEST(GltfUnitsTest, RiggedFigureIsMetresAndPersonSized) {
+  SINEW_REQUIRE_SHARED_DATA();
+  const MotionAsset figure = load(gltfData("RiggedFigure.glb"));
+  std::cout << "[ figures  ] RiggedFigure: " << unitName(figure.detection.frame.unit) << ", "
+            << figure.detection.height_m << " m (" << figure.detection.reason << ")\n";
+  EXPECT_EQ(figure.detection.frame.unit, LengthUnit::kMetres) << figure.detection.reason;
+  // Its joints span the ankles to the neck of a 1.45 m mesh (the head top is no joint).
+  EXPECT_GT(figure.detection.height_m, 1.0);
+  EXPECT_LT(figure.detection.height_m, 1.5);
 }
 
 // ================================================================================================

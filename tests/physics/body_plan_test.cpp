@@ -1,6 +1,7 @@
 #include "sinew/physics/body_plan.h"
 
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <string>
 
@@ -93,6 +94,57 @@ void printPlan(const char* label, const BodyPlan& plan, int joints) {
       "%s: %d joints -> %zu links (%d ball, %d hinge, %d fixed), %d DOF, %.2f kg, size %.2f m%s\n",
       label, joints, plan.links.size(), ball, hinge, fixed, plan.dofCount(), plan.total_mass_kg,
       plan.size_m, plan.human ? ", human (de Leva)" : ", by volume");
+}
+
+// The links' shapes at water density (what buildBodyPlan gives a figure that is not human,
+// before its lightest-link floor), kg: what the rig's size alone says it weighs.
+double volumeMassKg(const BodyPlan& plan, double density_kg_m3) {
+  double volume = 0.0;
+  for (const Link& link : plan.links) {
+    const Shape& s = link.shape;
+    const double ball = 4.0 / 3.0 * std::numbers::pi * s.radius * s.radius * s.radius;
+    if (s.type == ShapeType::kBox)
+      volume += 8.0 * s.half_extents.x * s.half_extents.y * s.half_extents.z;
+    else if (s.type == ShapeType::kCapsule)
+      volume += ball + std::numbers::pi * s.radius * s.radius * 2.0 * s.half_length;
+    else
+      volume += ball;
+  }
+  return volume * density_kg_m3;
+}
+
+// The real glTF rigs arrive in metres (the Fox's centimetres by anatomy, motion/gltf_units.h),
+// so their plans have their bodies' size: the Fox's was 155 m across and 95,537,128 kg.
+TEST(BodyPlan, RealGltfRigsHaveTheirBodiesSize) {
+  SINEW_REQUIRE_SHARED_DATA();
+  const motion::MotionAsset fox =
+      test_util::loadAsset(sinew::test::sharedData() / "gltf" / "Fox.glb");
+  ASSERT_GE(fox.clips.size(), 2u);
+  Result<BodyPlan> fox_plan = buildBodyPlan(fox.skeleton, &fox.clips[1]);  // Walk
+  ASSERT_TRUE(fox_plan.ok()) << fox_plan.message();
+  printPlan("Fox (Walk)", fox_plan.value(), fox.skeleton.jointCount());
+  const double fox_volume_kg = volumeMassKg(fox_plan.value(), BodyPlanSettings{}.density_kg_m3);
+  std::printf("Fox by its shapes' volume: %.2f kg\n", fox_volume_kg);
+  EXPECT_GT(fox_plan.value().size_m, 0.8);  // nose to hind paw in the Walk's first pose
+  EXPECT_LT(fox_plan.value().size_m, 1.8);
+  // A red fox weighs 3-11 kg; the plan's is not yet a fox's, for reasons inside physics
+  // (body_plan.cpp, reported, not this change): its UpperArm joints and two named feet (the
+  // front paws are "Hand") make the human rule give it the human 70 kg, and by volume its
+  // capsules, whose radii are human fractions of the rig's size, weigh 92 kg. What the units
+  // fix does hold: tens of kilograms, not 95,537,128.
+  EXPECT_LT(fox_plan.value().total_mass_kg, 100.0);
+  EXPECT_LT(fox_volume_kg, 100.0);
+
+  const motion::MotionAsset figure =
+      test_util::loadAsset(sinew::test::sharedData() / "gltf" / "RiggedFigure.glb");
+  ASSERT_FALSE(figure.clips.empty());
+  Result<BodyPlan> figure_plan = buildBodyPlan(figure.skeleton, &figure.clips[0]);
+  ASSERT_TRUE(figure_plan.ok()) << figure_plan.message();
+  printPlan("RiggedFigure", figure_plan.value(), figure.skeleton.jointCount());
+  EXPECT_GT(figure_plan.value().size_m, 1.0);  // ankles to neck of a 1.45 m person
+  EXPECT_LT(figure_plan.value().size_m, 1.5);
+  EXPECT_GT(figure_plan.value().total_mass_kg, 25.0);  // a slight adult or a child
+  EXPECT_LT(figure_plan.value().total_mass_kg, 80.0);
 }
 
 TEST(BodyPlan, BipedFromAssetHasHumanMassesHingedKneesAndBoxFeet) {

@@ -50,6 +50,23 @@ std::string toUtf8(std::string_view text) {
   return out;
 }
 
+std::optional<std::string> latin1FromUtf8(std::string_view text) {
+  if (!isValidUtf8(text)) return std::nullopt;
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte < 0x80) {
+      out += text[i];
+    } else if ((byte == 0xC2 || byte == 0xC3) && i + 1 < text.size()) {
+      out += static_cast<char>(((byte & 0x03) << 6) | (static_cast<unsigned char>(text[++i]) & 0x3F));
+    } else {
+      return std::nullopt;  // a code point past U+00FF has no Latin-1 byte
+    }
+  }
+  return out;
+}
+
 std::string_view withoutBom(std::string_view text) {
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   return text;

@@ -171,67 +171,126 @@ FigureMeasure measureFigure(const Skeleton& skeleton, const Clip& clip, int up_a
   return measure;
 }
 
-FrameDetection detectFrame(const Skeleton& skeleton, const Clip& clip,
-                           const FigureSizeRanges& ranges) {
-  FrameDetection result;
-  const FigureMeasure figure = measureFigure(skeleton, clip);
-  result.frame.up = figure.up_axis == 2 ? UpAxis::kZ : UpAxis::kY;
-  result.height_in_file_units = figure.height;
-  if (!(figure.height > 0.0)) {
-    result.reason = "the figure has no height; assuming metres, Y-up";
-    return result;
-  }
-  // What is measured, and the range it should fall in, by family.
-  double size = figure.height, lo = 0.0, hi = 0.0;
+namespace {
+
+// What a family's plausible size is measured on, and its range in metres (lo = hi = 0: none).
+struct SizeRange {
+  double size = 0.0;  // file units
+  double lo = 0.0, hi = 0.0;
   const char* what = "tall";
-  const char* family = figure.human ? "human" : familyName(figure.family);
-  if (!figure.human && figure.family != BodyFamily::kQuadruped) {
-    // No body to compare with: the size alone, >= 1000 units as mm, >= 10 as cm, else metres.
-    result.frame.unit = figure.height >= 1000.0 ? LengthUnit::kMillimetres
-                        : figure.height >= 10.0 ? LengthUnit::kCentimetres
-                                                : LengthUnit::kMetres;
-    result.height_m = figure.height * metresPerUnit(result.frame.unit);
-    std::ostringstream reason;
-    reason.precision(3);
-    reason << family << " (" << figure.legs << " legs reach the ground), " << figure.height
-           << " file units tall along " << upAxisName(result.frame.up) << " reads as "
-           << unitName(result.frame.unit) << " (override with --units and --up)";
-    result.reason = reason.str();
-    return result;
-  }
-  if (figure.human) {
-    lo = ranges.human_height_min_m;
-    hi = ranges.human_height_max_m;
-  } else if (figure.family == BodyFamily::kQuadruped) {
-    size = figure.hip_height;
-    lo = ranges.quadruped_hip_min_m;
-    hi = ranges.quadruped_hip_max_m;
-    what = "at the hips";
-  }
-  // Commonest first: a tie (both inside the range) goes to the earlier.
+};
+
+SizeRange sizeRange(const FigureMeasure& figure, const FigureSizeRanges& ranges) {
+  if (figure.human) return {figure.height, ranges.human_height_min_m, ranges.human_height_max_m};
+  if (figure.family == BodyFamily::kQuadruped)
+    return {figure.hip_height, ranges.quadruped_hip_min_m, ranges.quadruped_hip_max_m,
+            "at the hips"};
+  return {figure.height};
+}
+
+const char* familyLabel(const FigureMeasure& figure) {
+  return figure.human ? "human" : familyName(figure.family);
+}
+
+// The unit by the size alone, for figures without a family's range: >= 1000 units as mm, >= 10
+// as cm, else metres.
+FrameDetection unitBySize(const FigureMeasure& figure, UpAxis up) {
+  FrameDetection result;
+  result.frame.up = up;
+  result.height_in_file_units = figure.height;
+  result.frame.unit = figure.height >= 1000.0 ? LengthUnit::kMillimetres
+                      : figure.height >= 10.0 ? LengthUnit::kCentimetres
+                                              : LengthUnit::kMetres;
+  result.height_m = figure.height * metresPerUnit(result.frame.unit);
+  std::ostringstream reason;
+  reason.precision(3);
+  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), "
+         << figure.height << " file units tall along " << upAxisName(up) << " reads as "
+         << unitName(result.frame.unit) << " (override with --units and --up)";
+  result.reason = reason.str();
+  return result;
+}
+
+// The unit that puts the family's size inside its range, else the nearest on a log scale; the
+// commonest first, so a tie (both inside the range) goes to the earlier.
+FrameDetection unitByFamily(const FigureMeasure& figure, UpAxis up, const SizeRange& range) {
   const LengthUnit order[] = {LengthUnit::kCentimetres, LengthUnit::kMetres,
                               LengthUnit::kMillimetres, LengthUnit::kInches,
                               LengthUnit::kCmu,         LengthUnit::kFeet};
   LengthUnit best = order[0];
   double best_distance = 1e300;
   for (LengthUnit unit : order) {
-    const double metres = size * metresPerUnit(unit);
-    const double distance = metres < lo   ? std::log(lo / metres)
-                            : metres > hi ? std::log(metres / hi)
-                                          : 0.0;
+    const double metres = range.size * metresPerUnit(unit);
+    const double distance = metres < range.lo   ? std::log(range.lo / metres)
+                            : metres > range.hi ? std::log(metres / range.hi)
+                                                : 0.0;
     if (distance < best_distance - 1e-12) {
       best_distance = distance;
       best = unit;
     }
   }
-  result.frame.unit = best;
+  FrameDetection result;
+  result.frame = {best, up};
+  result.height_in_file_units = figure.height;
   result.height_m = figure.height * metresPerUnit(best);
   std::ostringstream reason;
   reason.precision(3);
-  reason << family << " (" << figure.legs << " legs reach the ground), " << size << " file units "
-         << what << " along " << upAxisName(result.frame.up) << ": " << size * metresPerUnit(best)
-         << " m in " << unitName(best) << (best_distance == 0.0 ? ", inside " : ", the nearest to ")
-         << lo << "-" << hi << " m (override with --units and --up)";
+  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), "
+         << range.size << " file units " << range.what << " along " << upAxisName(up) << ": "
+         << range.size * metresPerUnit(best) << " m in " << unitName(best)
+         << (best_distance == 0.0 ? ", inside " : ", the nearest to ") << range.lo << "-"
+         << range.hi << " m (override with --units and --up)";
+  result.reason = reason.str();
+  return result;
+}
+
+FrameDetection chooseUnit(const FigureMeasure& figure, const FigureSizeRanges& ranges) {
+  const UpAxis up = figure.up_axis == 2 ? UpAxis::kZ : UpAxis::kY;
+  if (!(figure.height > 0.0)) {
+    FrameDetection result;
+    result.frame.up = up;
+    result.reason = "the figure has no height; assuming metres, Y-up";
+    return result;
+  }
+  const SizeRange range = sizeRange(figure, ranges);
+  return range.hi > 0.0 ? unitByFamily(figure, up, range) : unitBySize(figure, up);
+}
+
+}  // namespace
+
+FrameDetection detectFrame(const Skeleton& skeleton, const Clip& clip,
+                           const FigureSizeRanges& ranges) {
+  return chooseUnit(measureFigure(skeleton, clip), ranges);
+}
+
+FrameDetection detectStatedFrame(const Skeleton& skeleton, const Clip& clip,
+                                 const SourceFrame& stated, const FigureSizeRanges& ranges) {
+  const FigureMeasure figure = measureFigure(skeleton, clip, stated.up == UpAxis::kZ ? 2 : 1);
+  const SizeRange range = sizeRange(figure, ranges);
+  const double per_unit = metresPerUnit(stated.unit);
+  const double metres = range.size * per_unit;
+  const bool plausible = range.hi > 0.0 ? metres >= range.lo && metres <= range.hi
+                                        : metres < ranges.other_height_max_m;
+  if (!(figure.height > 0.0) || !plausible) {
+    FrameDetection chosen = chooseUnit(figure, ranges);
+    chosen.reason = std::string("implausible in the file's ") +
+                    std::string(unitName(stated.unit)) + "; " + chosen.reason;
+    return chosen;
+  }
+  FrameDetection result;
+  result.frame = stated;
+  result.height_in_file_units = figure.height;
+  result.height_m = figure.height * per_unit;
+  std::ostringstream reason;
+  reason.precision(3);
+  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), " << metres
+         << " m " << range.what << " along " << upAxisName(stated.up) << " in the file's "
+         << unitName(stated.unit);
+  if (range.hi > 0.0)
+    reason << ", inside " << range.lo << "-" << range.hi << " m";
+  else
+    reason << ", under " << ranges.other_height_max_m << " m";
+  reason << " (override with --units)";
   result.reason = reason.str();
   return result;
 }

@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "gltf_common.h"
+#include "gltf_units.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
 #include "sinew/motion/gltf.h"
@@ -685,20 +686,7 @@ Result<MotionAsset> importModel(const Model& model, const std::string& file,
     skeleton.rest_rotations[j] = local.rotation;
     skeleton.rest_scales[j] = local.scale;
   }
-  skeleton.source = SourceFrame{LengthUnit::kMetres, UpAxis::kY};
   if (Status status = skeleton.validate(); !status.ok()) return ctx.fail(status.message());
-
-  double low = 0.0;
-  double high = 0.0;
-  const std::vector<glm::dmat4> rest = restWorldTransforms(skeleton);
-  for (size_t j = 0; j < rest.size(); ++j) {
-    low = j == 0 ? rest[j][3].y : std::min(low, rest[j][3].y);
-    high = j == 0 ? rest[j][3].y : std::max(high, rest[j][3].y);
-  }
-  asset.detection.frame = skeleton.source;
-  asset.detection.height_in_file_units = high - low;
-  asset.detection.height_m = high - low;
-  asset.detection.reason = "glTF is metres, Y-up by specification";
 
   if (Status status =
           readMeshes(ctx, tree.value(), joint_of_node, skeleton.jointCount(), asset.meshes);
@@ -721,6 +709,13 @@ Result<MotionAsset> importModel(const Model& model, const std::string& file,
     }
     clip_names.insert(name);
     asset.clips.push_back(std::move(clip).value());
+  }
+  // Everything so far holds the file's numbers; from here on, metres.
+  gltf::toMetres(asset, options, source);
+  if (Status status = skeleton.validate(); !status.ok()) return ctx.fail("in metres, " + status.message());
+  for (const Clip& clip : asset.clips) {
+    if (Status status = clip.validate(skeleton); !status.ok())
+      return ctx.fail("animation '" + clip.name + "' in metres: " + status.message());
   }
   source.node_of_joint = node_of_joint;
   source.skin_count = static_cast<int>(model.skins.size());

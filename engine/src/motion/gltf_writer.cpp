@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "gltf_common.h"
+#include "gltf_units.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
 #include "sinew/motion/gltf.h"
@@ -268,9 +269,9 @@ Result<Model> withNewAnimation(const GltfSource& source, const Skeleton& skeleto
     if (firstControlCharacter(target.name) >= 0 || !isValidUtf8(target.name))
       target.name = skeleton.names[j];
     if (!target.matrix.empty()) {
-      const glm::dvec3& t = skeleton.offsets[j];
+      const glm::dvec3 t = gltf::translationToFile(source, j, skeleton.offsets[j]);
       const glm::dquat& r = skeleton.rest_rotations[j];
-      const glm::dvec3& s = skeleton.rest_scales[j];
+      const glm::dvec3 s = gltf::scaleToFile(source, j, skeleton.rest_scales[j]);
       target.matrix.clear();
       target.translation = {t.x, t.y, t.z};
       target.rotation = {r.x, r.y, r.z, r.w};
@@ -280,7 +281,9 @@ Result<Model> withNewAnimation(const GltfSource& source, const Skeleton& skeleto
   model.animations.clear();
   BufferBuilder buffer(model);
   if (Status status = repackBuffers(model, buffer, file); !status.ok()) return status;
-  addAnimation(model, buffer, clip, source.node_of_joint);
+  // The original's nodes hold the file's numbers (centimetres under no scale, or under an
+  // armature's 0.01), so the animation is written in them too.
+  addAnimation(model, buffer, gltf::clipToFile(clip, source), source.node_of_joint);
   buffer.finish();
   model.asset.generator = "Sinew";
   return parsed;

@@ -6,6 +6,7 @@
 // goes through toUtf8.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,6 +18,11 @@ bool isValidUtf8(std::string_view text);
 
 // `text` unchanged when it is valid UTF-8, else every byte read as Latin-1 and written as UTF-8.
 std::string toUtf8(std::string_view text);
+
+// The inverse of toUtf8's conversion: the Latin-1 bytes of UTF-8 text, or nothing when `text` is
+// not valid UTF-8 or holds a code point past U+00FF. A path that is not UTF-8 is stored as
+// toUtf8(path) (readable in JSON) and its bytes come back exactly through this.
+std::optional<std::string> latin1FromUtf8(std::string_view text);
 
 // `text` without a leading UTF-8 byte-order mark (EF BB BF), which some Windows tools write.
 std::string_view withoutBom(std::string_view text);

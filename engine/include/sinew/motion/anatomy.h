@@ -57,12 +57,23 @@ struct FigureSizeRanges {
   double human_height_max_m = 2.1;
   double quadruped_hip_min_m = 0.15;  // hip height: a cat to a horse
   double quadruped_hip_max_m = 1.8;
+  // Other creatures have no range; a file that states its unit (glTF: metres) is believed for a
+  // figure under this height (the size rule above reads 10 units and more as centimetres).
+  double other_height_max_m = 10.0;
 };
 
 // Up axis and unit of a file's skeleton and clip (still in the file's numbers), by anatomy; the
 // reason names the family, the measured size and the unit's choice.
 FrameDetection detectFrame(const Skeleton& skeleton, const Clip& clip,
                            const FigureSizeRanges& ranges = {});
+
+// For a file whose format states its frame (glTF: metres, Y-up by specification) but whose
+// exporters do not always keep it (the Khronos Fox is in centimetres): the figure is measured
+// along the stated up axis, and the stated unit is kept when it makes the figure plausible (a
+// human or a quadruped inside its range, another creature under other_height_max_m); otherwise
+// the unit is chosen as detectFrame chooses it, and the reason says both.
+FrameDetection detectStatedFrame(const Skeleton& skeleton, const Clip& clip,
+                                 const SourceFrame& stated, const FigureSizeRanges& ranges = {});
 
 enum class Side : std::uint8_t { kUnknown, kLeft, kRight };
 const char* sideName(Side side);  // "left", "right", "unknown"

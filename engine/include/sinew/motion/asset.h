@@ -24,7 +24,9 @@ namespace sinew::motion {
 // A skinned triangle mesh as the editor draws it (float, as the GPU wants it).
 struct SkinnedMesh {
   std::string name;
-  std::vector<glm::vec3> positions;    // (vertices) bind pose, metres, Y-up
+  std::vector<glm::vec3> positions;    // (vertices) bind pose in the mesh node's space, metres
+                                       // once mesh_to_world places them (glTF ignores the node
+                                       // for skinning: the inverse binds hold it)
   std::vector<glm::vec3> normals;      // (vertices) unit length, or empty
   std::vector<glm::u16vec4> joints;    // (vertices) skeleton joint indices of the four influences
   std::vector<glm::vec4> weights;      // (vertices) influence weights, summing to 1
@@ -42,11 +44,19 @@ struct GltfSource {
   std::filesystem::path directory;  // for .gltf files that reference external buffers/images
   std::vector<int> node_of_joint;   // (skeleton joints) the glTF node index of each joint
   int skin_count = 0;               // skins in the file (the first one is imported)
+  // How the reader turned the file's numbers into metres, so that export writes the file's own
+  // numbers back (gltf_units.h). Empty: the numbers were metres as they stand.
+  std::vector<double> metres_per_number;  // (skeleton joints) factor applied to each joint's
+                                          // translations: the folded scales above it, times the
+                                          // unit's metres
+  std::vector<double> folded_scale;       // (skeleton joints) the uniform rest scale folded out
+                                          // of each joint (an armature's 0.01), 1 elsewhere
 };
 
 struct ImportOptions {
-  std::optional<LengthUnit> unit;  // BVH: override the detected unit
-  std::optional<UpAxis> up;        // BVH: override the detected up axis
+  std::optional<LengthUnit> unit;  // override the detected unit (glTF: of the numbers left once
+                                   // the armature's scale is applied)
+  std::optional<UpAxis> up;        // BVH: override the detected up axis (glTF is Y-up)
   std::optional<double> fps;       // glTF: resampling rate; default: each animation's median
                                    // key spacing. Must be in (0, 1000].
   bool repair_glitches = true;     // repair the glitches found (glitch.h); false keeps them
