@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "sinew/core/rotation.h"
 #include "sinew/physics/controller.h"
 #include "sinew/physics/world.h"
 #include "sinew/spectral/signals.h"
@@ -68,12 +69,6 @@ std::pair<int, int> swingOf(const std::vector<double>& h, double ground, double 
   return {up, down};
 }
 
-// Rotation by the rotation vector v.
-glm::dquat rotationBy(const glm::dvec3& v) {
-  const double angle = glm::length(v);
-  return angle > 1e-12 ? glm::angleAxis(angle, v / angle) : glm::dquat(1.0, 0.0, 0.0, 0.0);
-}
-
 // One damped least-squares step of liftFoot.
 void liftFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
               double lift) {
@@ -119,7 +114,7 @@ void liftFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& 
         turn += glm::dot(c.moves, y) * c.axis;
         hinge += glm::dot(c.moves, y);
       }
-    turned = glm::normalize(turned * rotationBy(turn));
+    turned = glm::normalize(turned * fromRotationVector(turn));
     const Link& link = plan.links[l];
     const glm::dquat link_new = glm::normalize(turned * world[l]);
     if (link.type == JointType::kBall) pose.rotations[l] = coordinateFor(link, parent_new, link_new);
@@ -231,7 +226,7 @@ void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations) {
         term.amplitude * std::sin(term.omega * t + term.phase);
   for (size_t j = 0; j < base_.size(); ++j)
     rotations[j] = rotates_[j] != 0
-                       ? glm::normalize(base_[j] * spectral::fromRotationVector(vectors_[j]))
+                       ? glm::normalize(base_[j] * fromRotationVector(vectors_[j]))
                        : base_[j];
 }
 

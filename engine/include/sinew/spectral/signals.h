@@ -49,7 +49,4 @@ MotionSignals extractSignals(const motion::Skeleton& skeleton, const motion::Cli
 // Precondition: values not empty.
 double catmullRomAt(const std::vector<double>& values, double frame);
 
-// Rotation maths lives in core/rotation.h; the name stays here for physics/tracking.cpp.
-using ::sinew::fromRotationVector;
-
 }  // namespace sinew::spectral
