@@ -485,6 +485,86 @@ Status BodyPlan::validate() const {
   return Status();
 }
 
+namespace {
+
+// Masses (de Leva fractions for a human-sized biped, shape volume otherwise, no link below a share
+// of the body), the user's overrides after the rules, and inertia from the shapes.
+Status assignMasses(BodyPlan& plan, const motion::MassDistribution& masses,
+                    const std::vector<motion::Foot>& feet, const BodyPlanSettings& settings) {
+  const int link_count = static_cast<int>(plan.links.size());
+  const int n = static_cast<int>(masses.fractions.size());
+  bool has_arms = false, has_legs = false;
+  for (motion::Segment s : masses.segments) {
+    has_arms = has_arms || s == motion::Segment::kUpperArm;
+    has_legs = has_legs || s == motion::Segment::kThigh;
+  }
+  int named_feet = 0;
+  for (const motion::Foot& f : feet) named_feet += f.by_name ? 1 : 0;
+  plan.human = has_arms && has_legs && named_feet == 2 && plan.size_m > 1.0 && plan.size_m < 2.5;
+  std::vector<double> fraction(link_count, 0.0);
+  if (plan.human)
+    for (int j = 0; j < n; ++j) fraction[plan.link_of_joint[j]] += masses.fractions[j];
+  double total = 0.0;
+  for (int li = 0; li < link_count; ++li) {
+    Link& link = plan.links[li];
+    const double by_volume = shapeVolume(link.shape) * settings.density_kg_m3;
+    link.mass_kg = fraction[li] > 0.0 ? fraction[li] * settings.human_mass_kg : by_volume;
+    total += link.mass_kg;
+  }
+  // Light links (a tail tip, a paw) against a heavy body make the articulated solve and the
+  // contacts stiff; no link is lighter than this share of the body.
+  const double floor_mass = settings.min_link_mass_fraction * total;
+  for (Link& link : plan.links) {
+    if (link.mass_kg >= floor_mass) continue;
+    total += floor_mass - link.mass_kg;
+    link.mass_kg = floor_mass;
+  }
+  if (plan.human) {
+    const double k = settings.human_mass_kg / total;
+    total = 0.0;
+    for (Link& link : plan.links) total += (link.mass_kg *= k);
+  }
+  // The user's overrides, after the rules.
+  auto findLink = [&](const std::string& name) {
+    for (int li = 0; li < link_count; ++li)
+      if (plan.links[li].name == name) return li;
+    return -1;
+  };
+  for (const auto& [name, kg] : settings.mass_overrides) {
+    const int li = findLink(name);
+    if (li < 0) return Status::error("mass_overrides: no link named '" + name + "'");
+    total += kg - plan.links[li].mass_kg;
+    plan.links[li].mass_kg = kg;
+  }
+  for (const auto& [name, type] : settings.type_overrides) {
+    const int li = findLink(name);
+    if (li <= 0) return Status::error("type_overrides: no jointed link named '" + name + "'");
+    plan.links[li].type = type;
+  }
+  for (const auto& [name, range] : settings.hinge_limit_overrides) {
+    const int li = findLink(name);
+    if (li < 0 || plan.links[li].type != JointType::kHinge)
+      return Status::error("hinge_limit_overrides: no hinge named '" + name + "'");
+    plan.links[li].hinge_lower = range.first;
+    plan.links[li].hinge_upper = range.second;
+  }
+  plan.total_mass_kg = total;
+
+  // Inertia from the shapes, rotated into the link frame (diagonal kept).
+  for (Link& link : plan.links) {
+    const glm::dvec3 principal = shapeInertia(link.shape, link.mass_kg);
+    const glm::dmat3 r = glm::mat3_cast(link.shape.rotation);
+    const glm::dmat3 tensor =
+        r * glm::dmat3(principal.x, 0, 0, 0, principal.y, 0, 0, 0, principal.z) * glm::transpose(r);
+    const double floor = 1e-7;
+    link.inertia = glm::dvec3(std::max(tensor[0][0], floor), std::max(tensor[1][1], floor),
+                              std::max(tensor[2][2], floor));
+  }
+  return {};
+}
+
+}  // namespace
+
 Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
                                const motion::Clip* observed_motion,
                                const BodyPlanSettings& settings) {
@@ -857,74 +937,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
     link.com = shape.center;
   }
 
-  // Masses: de Leva fractions for a human-sized biped, shape volume otherwise.
-  bool has_arms = false, has_legs = false;
-  for (motion::Segment s : masses.segments) {
-    has_arms = has_arms || s == motion::Segment::kUpperArm;
-    has_legs = has_legs || s == motion::Segment::kThigh;
-  }
-  int named_feet = 0;
-  for (const motion::Foot& f : feet) named_feet += f.by_name ? 1 : 0;
-  plan.human = has_arms && has_legs && named_feet == 2 && plan.size_m > 1.0 && plan.size_m < 2.5;
-  std::vector<double> fraction(link_count, 0.0);
-  if (plan.human)
-    for (int j = 0; j < n; ++j) fraction[plan.link_of_joint[j]] += masses.fractions[j];
-  double total = 0.0;
-  for (int li = 0; li < link_count; ++li) {
-    Link& link = plan.links[li];
-    const double by_volume = shapeVolume(link.shape) * settings.density_kg_m3;
-    link.mass_kg = fraction[li] > 0.0 ? fraction[li] * settings.human_mass_kg : by_volume;
-    total += link.mass_kg;
-  }
-  // Light links (a tail tip, a paw) against a heavy body make the articulated solve and the
-  // contacts stiff; no link is lighter than this share of the body.
-  const double floor_mass = settings.min_link_mass_fraction * total;
-  for (Link& link : plan.links) {
-    if (link.mass_kg >= floor_mass) continue;
-    total += floor_mass - link.mass_kg;
-    link.mass_kg = floor_mass;
-  }
-  if (plan.human) {
-    const double k = settings.human_mass_kg / total;
-    total = 0.0;
-    for (Link& link : plan.links) total += (link.mass_kg *= k);
-  }
-  // The user's overrides, after the rules.
-  auto findLink = [&](const std::string& name) {
-    for (int li = 0; li < link_count; ++li)
-      if (plan.links[li].name == name) return li;
-    return -1;
-  };
-  for (const auto& [name, kg] : settings.mass_overrides) {
-    const int li = findLink(name);
-    if (li < 0) return Status::error("mass_overrides: no link named '" + name + "'");
-    total += kg - plan.links[li].mass_kg;
-    plan.links[li].mass_kg = kg;
-  }
-  for (const auto& [name, type] : settings.type_overrides) {
-    const int li = findLink(name);
-    if (li <= 0) return Status::error("type_overrides: no jointed link named '" + name + "'");
-    plan.links[li].type = type;
-  }
-  for (const auto& [name, range] : settings.hinge_limit_overrides) {
-    const int li = findLink(name);
-    if (li < 0 || plan.links[li].type != JointType::kHinge)
-      return Status::error("hinge_limit_overrides: no hinge named '" + name + "'");
-    plan.links[li].hinge_lower = range.first;
-    plan.links[li].hinge_upper = range.second;
-  }
-  plan.total_mass_kg = total;
-
-  // Inertia from the shapes, rotated into the link frame (diagonal kept).
-  for (Link& link : plan.links) {
-    const glm::dvec3 principal = shapeInertia(link.shape, link.mass_kg);
-    const glm::dmat3 r = glm::mat3_cast(link.shape.rotation);
-    const glm::dmat3 tensor =
-        r * glm::dmat3(principal.x, 0, 0, 0, principal.y, 0, 0, 0, principal.z) * glm::transpose(r);
-    const double floor = 1e-7;
-    link.inertia = glm::dvec3(std::max(tensor[0][0], floor), std::max(tensor[1][1], floor),
-                              std::max(tensor[2][2], floor));
-  }
+  if (Status s = assignMasses(plan, masses, feet, settings); !s.ok()) return s;
 
   // Which links carry the body: their subtree holds a foot.
   for (int li = link_count - 1; li >= 0; --li) {
