@@ -487,6 +487,55 @@ Status BodyPlan::validate() const {
 
 namespace {
 
+// Without a clip, foot link li's sole: level when the foot stands at rest, a box measured in the
+// upright rest pose (`rest_up`; both feet alike), then carried into the first pose's link frame.
+Shape restSoleBox(const motion::Skeleton& skeleton, const BodyPlan& plan, int li,
+                  const std::vector<glm::dmat4>& rest_up, const glm::dvec3& lateral_world,
+                  double radius) {
+  const Link& link = plan.links[static_cast<size_t>(li)];
+  const int n = skeleton.jointCount();
+  Shape shape;
+  shape.radius = radius;
+  std::vector<glm::dvec3> sole_points;
+  for (int j = link.joint; j < n; ++j) {
+    const int owner = plan.link_of_joint[j];
+    const bool own = owner == li && j != link.joint;
+    const bool child_pivot =
+        owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
+    if (own || child_pivot) sole_points.emplace_back(rest_up[j][3]);
+    if (owner == li && skeleton.end_sites[j])
+      sole_points.push_back(transformPoint(rest_up[j], *skeleton.end_sites[j]));
+  }
+  const glm::dvec3 ankle(rest_up[link.joint][3]);
+  glm::dvec3 forward(0.0);
+  double far = 0.0, bottom = ankle.y;
+  for (const glm::dvec3& p : sole_points) {
+    glm::dvec3 d = p - ankle;
+    d.y = 0.0;
+    if (glm::length(d) > far) far = glm::length(d), forward = d;
+    bottom = std::min(bottom, p.y);
+  }
+  if (far < 1e-6) {
+    forward = glm::normalize(glm::cross(lateral_world, kUp));
+    far = 4.0 * radius;
+  } else {
+    forward /= far;
+  }
+  const glm::dvec3 side = glm::normalize(glm::cross(kUp, forward));
+  const double heel = 1.5 * radius;
+  if (ankle.y - bottom < 1.5 * radius) bottom = ankle.y - 1.5 * radius;
+  const double top = ankle.y;
+  const glm::dvec3 center_world =
+      ankle + forward * (0.5 * (far - heel)) + kUp * (0.5 * (top + bottom) - ankle.y);
+  shape.type = ShapeType::kBox;
+  shape.half_extents = glm::dvec3(radius, 0.5 * (top - bottom), 0.5 * (far + heel));
+  const glm::dquat world_rotation = glm::quat_cast(glm::dmat3(side, kUp, forward));
+  shape.center = transformPoint(glm::inverse(rest_up[link.joint]), center_world);
+  shape.rotation = glm::normalize(
+      glm::inverse(glm::quat_cast(glm::dmat3(rest_up[link.joint]))) * world_rotation);
+  return shape;
+}
+
 // Masses (de Leva fractions for a human-sized biped, shape volume otherwise, no link below a share
 // of the body), the user's overrides after the rules, and inertia from the shapes.
 Status assignMasses(BodyPlan& plan, const motion::MassDistribution& masses,
@@ -864,46 +913,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
       shape = soleBox(soles[static_cast<size_t>(foot_index)], foot_points[static_cast<size_t>(foot_index)],
                       bare_tip[static_cast<size_t>(foot_index)] != 0, radius);
     } else if (link.foot) {
-      // Without a clip: the sole is level when the foot stands at rest: a box measured in the upright rest pose
-      // (both feet alike, whatever the clip's first frame does with them), then carried into the
-      // first pose's link frame.
-      std::vector<glm::dvec3> sole_points;
-      for (int j = link.joint; j < n; ++j) {
-        const int owner = plan.link_of_joint[j];
-        const bool own = owner == li && j != link.joint;
-        const bool child_pivot =
-            owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
-        if (own || child_pivot) sole_points.emplace_back(rest_up[j][3]);
-        if (owner == li && skeleton.end_sites[j])
-          sole_points.push_back(transformPoint(rest_up[j], *skeleton.end_sites[j]));
-      }
-      const glm::dvec3 ankle(rest_up[link.joint][3]);
-      glm::dvec3 forward(0.0);
-      double far = 0.0, bottom = ankle.y;
-      for (const glm::dvec3& p : sole_points) {
-        glm::dvec3 d = p - ankle;
-        d.y = 0.0;
-        if (glm::length(d) > far) far = glm::length(d), forward = d;
-        bottom = std::min(bottom, p.y);
-      }
-      if (far < 1e-6) {
-        forward = glm::normalize(glm::cross(lateral_world, kUp));
-        far = 4.0 * radius;
-      } else {
-        forward /= far;
-      }
-      const glm::dvec3 side = glm::normalize(glm::cross(kUp, forward));
-      const double heel = 1.5 * radius;
-      if (ankle.y - bottom < 1.5 * radius) bottom = ankle.y - 1.5 * radius;
-      const double top = ankle.y;
-      const glm::dvec3 center_world =
-          ankle + forward * (0.5 * (far - heel)) + kUp * (0.5 * (top + bottom) - ankle.y);
-      shape.type = ShapeType::kBox;
-      shape.half_extents = glm::dvec3(radius, 0.5 * (top - bottom), 0.5 * (far + heel));
-      const glm::dquat world_rotation = glm::quat_cast(glm::dmat3(side, kUp, forward));
-      shape.center = transformPoint(glm::inverse(rest_up[link.joint]), center_world);
-      shape.rotation = glm::normalize(
-          glm::inverse(glm::quat_cast(glm::dmat3(rest_up[link.joint]))) * world_rotation);
+      shape = restSoleBox(skeleton, plan, li, rest_up, lateral_world, radius);
     } else if (points_world.empty()) {
       shape.type = ShapeType::kSphere;
     } else if (points_world.size() >= 2 && (link.segment == motion::Segment::kTrunk || li == 0)) {
