@@ -487,25 +487,33 @@ Status BodyPlan::validate() const {
 
 namespace {
 
+// The points link li holds, in the world of the joint transforms `world`: the joints merged into
+// it, its children's pivots and its End Sites.
+std::vector<glm::dvec3> linkPoints(const motion::Skeleton& skeleton, const BodyPlan& plan, int li,
+                                   const std::vector<glm::dmat4>& world) {
+  const Link& link = plan.links[static_cast<size_t>(li)];
+  std::vector<glm::dvec3> points;
+  for (int j = link.joint; j < skeleton.jointCount(); ++j) {
+    const int owner = plan.link_of_joint[j];
+    const bool own = owner == li && j != link.joint;
+    const bool child_pivot =
+        owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
+    if (own || child_pivot) points.emplace_back(world[j][3]);
+    if (owner == li && skeleton.end_sites[j])
+      points.push_back(transformPoint(world[j], *skeleton.end_sites[j]));
+  }
+  return points;
+}
+
 // Without a clip, foot link li's sole: level when the foot stands at rest, a box measured in the
 // upright rest pose (`rest_up`; both feet alike), then carried into the first pose's link frame.
 Shape restSoleBox(const motion::Skeleton& skeleton, const BodyPlan& plan, int li,
                   const std::vector<glm::dmat4>& rest_up, const glm::dvec3& lateral_world,
                   double radius) {
   const Link& link = plan.links[static_cast<size_t>(li)];
-  const int n = skeleton.jointCount();
   Shape shape;
   shape.radius = radius;
-  std::vector<glm::dvec3> sole_points;
-  for (int j = link.joint; j < n; ++j) {
-    const int owner = plan.link_of_joint[j];
-    const bool own = owner == li && j != link.joint;
-    const bool child_pivot =
-        owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
-    if (own || child_pivot) sole_points.emplace_back(rest_up[j][3]);
-    if (owner == li && skeleton.end_sites[j])
-      sole_points.push_back(transformPoint(rest_up[j], *skeleton.end_sites[j]));
-  }
+  const std::vector<glm::dvec3> sole_points = linkPoints(skeleton, plan, li, rest_up);
   const glm::dvec3 ankle(rest_up[link.joint][3]);
   glm::dvec3 forward(0.0);
   double far = 0.0, bottom = ankle.y;
@@ -895,16 +903,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
   for (int li = 0; li < link_count; ++li) {
     Link& link = plan.links[li];
     const glm::dmat4 to_link = glm::inverse(world[link.joint]);
-    std::vector<glm::dvec3> points_world;
-    for (int j = link.joint; j < n; ++j) {
-      const int owner = plan.link_of_joint[j];
-      const bool own = owner == li && j != link.joint;
-      const bool child_pivot =
-          owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
-      if (own || child_pivot) points_world.emplace_back(world[j][3]);
-      if (owner == li && skeleton.end_sites[j])
-        points_world.push_back(transformPoint(world[j], *skeleton.end_sites[j]));
-    }
+    const std::vector<glm::dvec3> points_world = linkPoints(skeleton, plan, li, world);
     const double radius = segmentRadius(settings, link.segment) * plan.size_m;
     Shape shape;
     shape.radius = radius;
