@@ -133,6 +133,41 @@ TEST(TrackingController, SwingLiftRaisesTheSwingFootStraightUp) {
             1e-9);
 }
 
+// The motion the feedback compares the body with is the target's whole pose, its travel
+// included: the reference centre of mass moves at the clip's speed (it stood still before, so
+// the velocity gains saw the whole walking speed as an error).
+TEST(TrackingController, TheMotionTargetTravelsWithTheTarget) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
+  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
+  TrackingSettings settings;
+  settings.ramp_s = 0.0;
+  auto made = TrackingController::create(*world, biped.asset.skeleton, biped.target, state.pose,
+                                         settings);
+  ASSERT_TRUE(made.ok()) << made.message();
+  TrackingController& controller = *made.value();
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  const size_t joints = static_cast<size_t>(biped.asset.skeleton.jointCount());
+  std::vector<glm::dquat> rotations(joints);
+  std::vector<glm::dvec3> translations(joints);
+  glm::dvec3 first(0.0);
+  while (world->time() < 1.0) {
+    controller.update(*world);
+    biped.target.pose(world->time(), rotations, translations);
+    const LinkPose expected =
+        linkPoseFromSkeleton(biped.plan, biped.asset.skeleton, rotations, translations);
+    ASSERT_LT(glm::length(controller.motionTarget().base_position - expected.base_position), 1e-9)
+        << "at " << world->time() << " s";
+    if (world->stepCount() == 0) first = expected.base_position;
+    world->step(zero);
+  }
+  const glm::dvec3 moved = controller.motionTarget().base_position - first;
+  const double speed = glm::length(glm::dvec2(moved.x, moved.z)) / world->time();
+  std::printf("the motion target travelled %.2f m/s\n", speed);
+  EXPECT_GT(speed, 0.5);  // the bundled walk's 1.3 m/s, give or take its sway within a second
+}
+
 TEST(Simulation, OnlyGravityGroundAndScheduledPushesAct) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());

@@ -348,6 +348,9 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
   c->standing_ = standing;
   c->rotations_.resize(static_cast<size_t>(skeleton.jointCount()));
   c->translations_ = target.base_translations;
+  c->base_translations_ = target.base_translations;
+  for (const spectral::ChannelModel& channel : target.channels)
+    if (channel.kind != spectral::SignalKind::kRotation) c->translation_channels_.push_back(channel);
   for (size_t li = 0; li < plan.links.size(); ++li)
     if (plan.links[li].foot) c->feet_.push_back(static_cast<int>(li));
 
@@ -408,10 +411,21 @@ void TrackingController::liftSwingFeet(double time) {
   }
 }
 
+// The target's translations with its travel (TargetMotion::pose's): the reference centre of
+// mass moves, so its velocity is the motion's, not only what the joints' turning gives.
+void TrackingController::evaluateTranslations(double time) {
+  translations_ = base_translations_;
+  for (const spectral::ChannelModel& channel : translation_channels_)
+    translations_[static_cast<size_t>(channel.joint)][channel.axis] +=
+        spectral::evaluate(channel.mean, channel.terms, fourier_->omega0(), time) +
+        channel.trend * time;
+}
+
 void TrackingController::update(World& world) {
   const BodyPlan& plan = *plan_;
   const double t = world.time();
   fourier_->evaluate(t, rotations_);
+  evaluateTranslations(t);
   motion_ = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
   // Ramp from the standing pose into the motion.
   const double ramp = settings_.ramp_s > 0.0 ? std::clamp(t / settings_.ramp_s, 0.0, 1.0) : 1.0;

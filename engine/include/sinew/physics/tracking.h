@@ -153,6 +153,7 @@ class TrackingController {
   void liftSwingFeet(double time);
   void applyFeedback(const World& world);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
+  void evaluateTranslations(double time);  // translations_ at `time`
 
   const BodyPlan* plan_ = nullptr;
   const motion::Skeleton* skeleton_ = nullptr;
@@ -162,7 +163,9 @@ class TrackingController {
   LinkPose motion_;
   LinkPose target_;
   std::vector<glm::dquat> rotations_;     // (joints) scratch
-  std::vector<glm::dvec3> translations_;  // (joints) the target's base translations
+  std::vector<glm::dvec3> translations_;  // (joints) the target's translations at the present time
+  std::vector<glm::dvec3> base_translations_;  // (joints) the target's base translations
+  std::vector<spectral::ChannelModel> translation_channels_;  // the target's (its travel)
   std::vector<int> feet_;                 // foot links
   std::vector<int> hips_;                 // (feet) the leg's top link below the common link
   int pelvis_ = 0;                        // the link the legs meet at
