@@ -529,7 +529,9 @@ void TrackingController::applyFeedback(const World& world) {
 
   // Stance ankle (the ankle strategy of Lee, Kim and Lee 2010): the planted foot's target turned
   // against the centre of mass's velocity error, so the foot tilts the body back towards the
-  // target's velocity.
+  // target's velocity. The ground holds the foot, so the servo turns the shank the other way: a
+  // foot turned by +a about `side` tips the body back, one turned by -a about `forward` tips it
+  // to the right; positive gains oppose the error in both planes.
   if (gains.ankle_sagittal != 0.0 || gains.ankle_coronal != 0.0) {
     const size_t foot = static_cast<size_t>(feet_[static_cast<size_t>(stance)]);
     const Link& foot_link = plan.links[foot];
@@ -537,7 +539,7 @@ void TrackingController::applyFeedback(const World& world) {
       const std::vector<glm::dquat> wanted = linkWorldRotations(plan, target_);
       const glm::dquat turn =
           glm::normalize(glm::angleAxis(gains.ankle_sagittal * (v.z - v_ref.z), side) *
-                         glm::angleAxis(gains.ankle_coronal * (v.x - v_ref.x), forward));
+                         glm::angleAxis(-gains.ankle_coronal * (v.x - v_ref.x), forward));
       target_.rotations[foot] = coordinateFor(
           foot_link, wanted[static_cast<size_t>(foot_link.parent)], glm::normalize(turn * wanted[foot]));
     }
