@@ -46,6 +46,8 @@ struct EvolveArgs {
   int threads = 0;
   int harmonics = 5;
   double sigma = 0.0;
+  int trials = 1;
+  double trial_push = 0.3;
   std::string resume;
   std::string out;
   std::string terrain = "flat";
@@ -116,6 +118,8 @@ Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
   if (args.has("--population")) s.search.population = args.population;
   if (args.has("--seed")) s.search.seed = args.seed;
   if (args.has("--no-prior")) s.search.no_prior = args.no_prior;
+  if (args.has("--trials")) s.search.trials = args.trials;
+  if (args.has("--trial-push")) s.search.trial_push_m_s = args.trial_push;
   if (args.has("--optimizer")) {
     Result<search::OptimizerKind> kind = search::optimizerFromName(args.optimizer);
     if (!kind.ok()) return Status::error("--optimizer: " + kind.message());
@@ -226,14 +230,19 @@ void printStart(const search::Session& session, const std::string& what, const E
     std::snprintf(budget, sizeof budget, "%.1f min", used.minutes);
   else
     std::snprintf(budget, sizeof budget, "%d generations", used.generations);
+  char trials[96] = "";
+  if (!session.problem().trial_pushes.empty())
+    std::snprintf(trials, sizeof trials, ", %zu runs a point (%zu pushed %.0f N s)",
+                  session.problem().trial_pushes.size() + 1, session.problem().trial_pushes.size(),
+                  glm::length(session.problem().trial_pushes.front().impulse_ns));
   std::printf(
       "evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.1f "
-      "s, seed %llu%s\n",
+      "s%s, seed %llu%s\n",
       what.c_str(), session.problem().layout.size(),
       used.optimizer == search::OptimizerKind::kCmaes ? "CMA-ES" : "genetic algorithm",
       chosen.search.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
       session.population(), budget, threads, threads == 1 ? "" : "s",
-      session.problem().simulation.seconds, static_cast<unsigned long long>(used.seed),
+      session.problem().simulation.seconds, trials, static_cast<unsigned long long>(used.seed),
       args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
   std::fflush(stdout);
 }
@@ -390,6 +399,16 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
                    "Initial step size in normalised units (default 0.02; the GA's mutation "
                    "scale)")
       ->check(CLI::Range(0.0, 1.0));
+  command
+      ->add_option("--trials", args->trials,
+                   "Robustness: runs per point, the nominal one and TRIALS - 1 pushed to the "
+                   "left, right, back and forward in turn; the cost is their mean (default 1)")
+      ->check(wholeNumber())
+      ->check(CLI::Range(1, search::kMaxTrials));
+  command
+      ->add_option("--trial-push", args->trial_push,
+                   "The trials' push per kg of body, m/s (default 0.3: 21 N s on 70 kg)")
+      ->check(CLI::Range(0.001, 10.0));
   command->add_option("--push", args->pushes,
                       "Robustness: every evaluation takes this push, TIME,X,Y,Z[,LINK] (seconds, "
                       "N s); repeatable");
@@ -404,7 +423,7 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   args->body.addTo(*command);
   command->callback([args, command, &exit_code]() {
     for (const char* flag : {"--harmonics", "--terrain", "--window", "--population", "--optimizer",
-                             "--seed", "--no-prior"})
+                             "--seed", "--no-prior", "--trials", "--trial-push"})
       if (command->count(flag) > 0) args->given.emplace_back(flag);
     if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");

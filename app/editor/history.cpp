@@ -120,6 +120,9 @@ std::string describeChange(const app::Project& before, const app::Project& after
   if (a.optimizer != b.optimizer)
     changes.push_back(std::string("optimizer ") + search::optimizerName(b.optimizer));
   if (a.seed != b.seed) changes.push_back("seed " + std::to_string(b.seed));
+  if (a.trials != b.trials) changes.push_back("trials " + std::to_string(b.trials));
+  if (a.trial_push_m_s != b.trial_push_m_s)
+    changes.push_back("trial push " + number(b.trial_push_m_s) + " m/s");
   search::FitnessWeights wa = a.weights, wb = b.weights;
   for (int term = 0; term < search::kFitnessTermCount; ++term) {
     if (search::fitnessWeight(wa, term) != search::fitnessWeight(wb, term)) {

@@ -180,12 +180,16 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     const json& search = document.at("search");
     const std::string in = where + "search.";
     if (!search.is_object()) return Status::error(where + "search: expected an object");
-    unknownKeys(search, {"minutes", "population", "no_prior", "optimizer", "seed", "weights"},
+    unknownKeys(search,
+                {"minutes", "population", "no_prior", "optimizer", "seed", "weights", "trials",
+                 "trial_push_m_s"},
                 "search.", name, warnings);
     check(read(search, "minutes", project.search.minutes, in));
     check(read(search, "population", project.search.population, in));
     check(read(search, "no_prior", project.search.no_prior, in));
     check(read(search, "seed", project.search.seed, in));
+    check(read(search, "trials", project.search.trials, in));
+    check(read(search, "trial_push_m_s", project.search.trial_push_m_s, in));
     std::string optimizer = search::optimizerName(project.search.optimizer);
     check(read(search, "optimizer", optimizer, in));
     if (status.ok()) {
@@ -419,7 +423,8 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
   const SearchSettings& s = project.search;
   out["search"] = {{"minutes", s.minutes},   {"population", s.population},
                    {"no_prior", s.no_prior}, {"optimizer", search::optimizerName(s.optimizer)},
-                   {"seed", s.seed},         {"weights", weightsJson(s.weights)}};
+                   {"seed", s.seed},         {"weights", weightsJson(s.weights)},
+                   {"trials", s.trials},     {"trial_push_m_s", s.trial_push_m_s}};
   const ViewSettings& v = project.view;
   out["view"] = {{"speed", v.speed},
                  {"loop", v.loop},

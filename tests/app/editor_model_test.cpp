@@ -75,6 +75,8 @@ TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
   p.search.seed = 42;
   p.search.weights.fall = 3.0;
   p.search.weights.energy = 0.01;
+  p.search.trials = 3;
+  p.search.trial_push_m_s = 0.45;
   p.edits.band_gains[2][1] = 0.5;
   p.edits.styles.push_back({"tired", (test::sourceDir() / "assets" / "a.bvh").string(),
                             (dir.path() / "b.bvh").string(), 0.75});
@@ -107,6 +109,8 @@ TEST(ProjectFileTest, BadProjectsNameTheFileAndTheField) {
        "harmonics: expected a number"},
       {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "terrain": "lava"})",
        "terrain: unknown kind 'lava'"},
+      {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "search": {"trials": 12}})",
+       "search.trials: must be 1..9"},
       {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "pushes": ["1,2"]})",
        "pushes '1,2': expected TIME,X,Y,Z"},
       {R"({"format": "sinew.project", "version": 2, "rig": "a.bvh", "body": {"masses": ["Head"]}})",

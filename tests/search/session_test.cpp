@@ -72,6 +72,42 @@ TEST(SearchGenome, ThePriorPointIsTheAnalysedMotion) {
   EXPECT_EQ(r, blind.layout.startPoint(7));
 }
 
+// Robustness trials: the cost is the mean over the nominal run and one run per trial push (to
+// the left, then the right of the reference direction, 0.3 m/s of the body's mass); the figures
+// stay the nominal run's.
+TEST(SearchProblem, TrialsAverageTheNominalAndThePushedRuns) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  Problem p = makeProblem(biped, 2.0);
+  EXPECT_FALSE(setTrials(p, 0, 0.3).ok());
+  EXPECT_FALSE(setTrials(p, kMaxTrials + 1, 0.3).ok());
+  EXPECT_FALSE(setTrials(p, 3, 0.0).ok());
+  ASSERT_TRUE(setTrials(p, 3, 0.3).ok());
+  ASSERT_EQ(p.trial_pushes.size(), 2u);
+  const glm::dvec3 left = glm::cross(glm::dvec3(0.0, 1.0, 0.0), p.reference_direction);
+  const double impulse = 0.3 * p.plan.total_mass_kg;
+  EXPECT_NEAR(glm::dot(p.trial_pushes[0].impulse_ns, left), impulse, 1e-9);
+  EXPECT_NEAR(glm::dot(p.trial_pushes[1].impulse_ns, left), -impulse, 1e-9);
+  EXPECT_NEAR(p.trial_pushes[0].time_s, 1.0, 1e-12);
+  EXPECT_NEAR(p.trial_pushes[1].time_s, 1.0, 1e-12);  // within the first half of the 2 s window
+
+  const std::vector<double> x = p.layout.startPoint(1);
+  const Evaluation robust = evaluate(p, x);
+  Problem single = p;
+  single.trial_pushes.clear();
+  const Evaluation nominal = evaluate(single, x);
+  double sum = nominal.terms.total;
+  for (const physics::Push& push : p.trial_pushes) {
+    Problem pushed = single;
+    pushed.simulation.pushes.push_back(push);
+    sum += evaluate(pushed, x).terms.total;
+  }
+  std::printf("nominal %.3f, mean of the three runs %.3f\n", nominal.terms.total, sum / 3.0);
+  EXPECT_NEAR(robust.terms.total, sum / 3.0, 1e-9);
+  EXPECT_EQ(robust.terms.survived_s, nominal.terms.survived_s);
+  EXPECT_EQ(robust.terms.distance_m, nominal.terms.distance_m);
+}
+
 EvolveSettings small(int threads, int generations = 2) {
   EvolveSettings s;
   s.population = 6;

@@ -89,7 +89,7 @@ void drawRunningSettings(const EvolutionState& evolution) {
                       evolution.started.search.no_prior ? ", no prior" : "");
 }
 
-// Budget, window, prior, optimiser, population and seed of the next search.
+// Budget, window, prior, optimiser, population, seed and trials of the next search.
 void drawSearchSettings(EvolutionState& evolution) {
   ImGui::SetNextItemWidth(120.0f);
   float minutes = static_cast<float>(evolution.settings.search.minutes);
@@ -119,6 +119,12 @@ void drawSearchSettings(EvolutionState& evolution) {
   int seed = static_cast<int>(evolution.settings.search.seed);
   if (ImGui::InputInt("seed", &seed))
     evolution.settings.search.seed = static_cast<std::uint64_t>(std::max(seed, 0));
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("trials", &evolution.settings.search.trials, 1, 1);
+  evolution.settings.search.trials = std::clamp(evolution.settings.search.trials, 1, search::kMaxTrials);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Runs per individual: the unpushed one and trials - 1 pushed to the left, "
+                      "right, back and forward; the cost is their mean (slower, sturdier gaits)");
 }
 
 // Live: a running search takes them from its next generation.

@@ -191,6 +191,10 @@ Result<SearchSetup> prepareSearch(const motion::Skeleton& skeleton, const motion
       search::Problem::create(plan.value(), skeleton, tracked.value().target, genome,
                               simulationSettings(settings.physics), settings.search.weights);
   if (!problem.ok()) return problem.status();
+  if (Status s = search::setTrials(problem.value(), settings.search.trials,
+                                   settings.search.trial_push_m_s);
+      !s.ok())
+    return s;
   return SearchSetup{std::move(problem).value(), std::move(tracked.value().what)};
 }
 

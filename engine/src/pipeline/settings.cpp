@@ -92,6 +92,10 @@ Status SearchSettings::validate() const {
     return Status::error("search.population: must be 0 (the optimiser's default) or more");
   if (Status w = weights.validate(); !w.ok())
     return Status::error("search.weights: " + w.message());
+  if (trials < 1 || trials > search::kMaxTrials)
+    return Status::error("search.trials: must be 1.." + std::to_string(search::kMaxTrials));
+  if (!(std::isfinite(trial_push_m_s) && trial_push_m_s > 0.0 && trial_push_m_s <= 10.0))
+    return Status::error("search.trial_push_m_s: must be in (0, 10] m/s");
   return Status();
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -299,7 +300,8 @@ Result<Problem> Problem::create(const physics::BodyPlan& plan, const motion::Ske
   if (Status s = simulation.validate(); !s.ok()) return Status::error("simulation: " + s.message());
   Result<GenomeLayout> layout = GenomeLayout::create(plan, skeleton, seed, genome);
   if (!layout.ok()) return layout.status();
-  Problem p{plan, skeleton, seed, std::move(layout).value(), simulation, weights};
+  Problem p{plan, skeleton, seed, std::move(layout).value(), simulation, weights, 0.0,
+            glm::dvec3(0.0, 0.0, 1.0), 0.0, {}};
   const physics::MotionState state = physics::targetState(plan, skeleton, seed, 0.0);
   glm::dvec3 v = state.base_linear;
   v.y = 0.0;
@@ -346,15 +348,30 @@ FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& r
   return t;
 }
 
-Evaluation evaluate(const Problem& problem, std::span<const double> x,
-                    const std::atomic<bool>* cancel, bool record) {
+Status setTrials(Problem& problem, int trials, double push_m_s) {
+  if (trials < 1 || trials > kMaxTrials)
+    return Status::error("trials: must be 1.." + std::to_string(kMaxTrials));
+  if (!(std::isfinite(push_m_s) && push_m_s > 0.0 && push_m_s <= 10.0))
+    return Status::error("trial push: must be in (0, 10] m/s");
+  const glm::dvec3 forward = problem.reference_direction;
+  const glm::dvec3 left = glm::cross(glm::dvec3(0.0, 1.0, 0.0), forward);
+  const glm::dvec3 directions[4] = {left, -left, -forward, forward};
+  const double impulse = push_m_s * problem.plan.total_mass_kg;
+  const double last = std::max(0.5, problem.simulation.seconds / 2.0);
+  problem.trial_pushes.clear();
+  for (int k = 1; k < trials; ++k) {
+    const double time = std::min(last, 1.0 + 0.7 * (k - 1));
+    problem.trial_pushes.push_back({time, impulse * directions[(k - 1) % 4], ""});
+  }
+  return Status();
+}
+
+namespace {
+
+// One run of a point's controller with these settings, scored; diverged runs cost +inf.
+Evaluation runOnce(const Problem& problem, const spectral::TargetMotion& target,
+                   const physics::SimulationSettings& settings) {
   Evaluation e;
-  physics::SimulationSettings settings = problem.simulation;
-  settings.tracking.balance = problem.layout.decodeGains(x);
-  settings.cancel = cancel;
-  settings.reference = &problem.seed;  // the style to keep, whatever the genome tracks
-  if (!record) settings.record_fps = std::min(settings.record_fps, 5.0);
-  const spectral::TargetMotion target = problem.layout.decodeTarget(x);
   Result<physics::SimulationReport> run =
       physics::simulate(problem.plan, problem.skeleton, target, settings);
   if (!run.ok()) {
@@ -369,7 +386,48 @@ Evaluation evaluate(const Problem& problem, std::span<const double> x,
     e.terms.diverged = true;
     e.terms.total = std::numeric_limits<double>::infinity();
   }
+  return e;
+}
+
+// The weighted terms and their total: what a point's trials are averaged over.
+constexpr double FitnessTerms::*kWeightedTerms[] = {
+    &FitnessTerms::fall,      &FitnessTerms::tracking, &FitnessTerms::speed,
+    &FitnessTerms::heading,   &FitnessTerms::placement, &FitnessTerms::upright,
+    &FitnessTerms::energy,    &FitnessTerms::total};
+
+}  // namespace
+
+Evaluation evaluate(const Problem& problem, std::span<const double> x,
+                    const std::atomic<bool>* cancel, bool record) {
+  physics::SimulationSettings settings = problem.simulation;
+  settings.tracking.balance = problem.layout.decodeGains(x);
+  settings.cancel = cancel;
+  settings.reference = &problem.seed;  // the style to keep, whatever the genome tracks
+  if (!record) settings.record_fps = std::min(settings.record_fps, 5.0);
+  const spectral::TargetMotion target = problem.layout.decodeTarget(x);
+  Evaluation e = runOnce(problem, target, settings);
   if (!record) e.report.motion = {};
+  if (problem.trial_pushes.empty() || e.terms.diverged || e.cancelled) return e;
+  // Robustness trials: the cost is the mean over the nominal run and each pushed one.
+  FitnessTerms sum = e.terms;
+  settings.record_fps = std::min(settings.record_fps, 5.0);
+  for (const physics::Push& push : problem.trial_pushes) {
+    physics::SimulationSettings pushed = settings;
+    pushed.pushes.push_back(push);
+    const Evaluation trial = runOnce(problem, target, pushed);
+    if (trial.cancelled) {
+      e.cancelled = true;
+      return e;
+    }
+    if (trial.terms.diverged) {
+      e.terms.diverged = true;
+      e.terms.total = std::numeric_limits<double>::infinity();
+      return e;
+    }
+    for (double FitnessTerms::*term : kWeightedTerms) sum.*term += trial.terms.*term;
+  }
+  const double runs = static_cast<double>(problem.trial_pushes.size() + 1);
+  for (double FitnessTerms::*term : kWeightedTerms) e.terms.*term = sum.*term / runs;
   return e;
 }
 

@@ -93,6 +93,9 @@ struct SearchSettings {
   search::OptimizerKind optimizer = search::OptimizerKind::kCmaes;
   std::uint64_t seed = 1;
   search::FitnessWeights weights;
+  int trials = 1;               // runs per point, 1..search::kMaxTrials: the nominal one and
+                                // trials - 1 pushed ones (search::setTrials); its cost the mean
+  double trial_push_m_s = 0.3;  // the trials' pushes, per kg of body: m/s, (0, 10]
   bool operator==(const SearchSettings&) const = default;
   Status validate() const;  // the message names the field ("search.minutes: ...")
 };

@@ -134,12 +134,23 @@ struct Problem {
   double reference_speed_m_s = 0.0;  // horizontal, from the seed target's travel
   glm::dvec3 reference_direction{0.0, 0.0, 1.0};
   double reference_step_m = 0.0;     // reference speed x period / 2
+  // Robustness trials (setTrials): besides the nominal run, every point is run once more per
+  // entry with that push added, and its cost is the mean of all its runs' costs. The figures
+  // (survival, distance, fall reason) stay the nominal run's. Empty: the nominal run alone.
+  std::vector<physics::Push> trial_pushes;
 
   static Result<Problem> create(const physics::BodyPlan& plan, const motion::Skeleton& skeleton,
                                 const spectral::TargetMotion& seed, const GenomeSettings& genome,
                                 const physics::SimulationSettings& simulation,
                                 const FitnessWeights& weights = {});
 };
+
+// Sets problem.trial_pushes for `trials` runs per point (1: the nominal run alone, up to
+// kMaxTrials): trial k >= 1 pushes the pelvis by push_m_s x body mass, to the left, right,
+// back and forward of the reference direction in turn, at 1 s + 0.7 s (k - 1) (within the first
+// half of the window), so the pushes meet different phases of the stride.
+inline constexpr int kMaxTrials = 9;
+Status setTrials(Problem& problem, int trials, double push_m_s);
 
 // Simulates one point and scores it. `cancel` ends it early (the result is then not a fitness:
 // `cancelled` set). `record`: keep the recorded motion in `report`.
