@@ -48,6 +48,7 @@ struct EvolveArgs {
   double sigma = 0.0;
   int trials = 1;
   double trial_push = 0.3;
+  int restart_after = 0;
   std::string resume;
   std::string out;
   std::string terrain = "flat";
@@ -120,6 +121,7 @@ Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
   if (args.has("--no-prior")) s.search.no_prior = args.no_prior;
   if (args.has("--trials")) s.search.trials = args.trials;
   if (args.has("--trial-push")) s.search.trial_push_m_s = args.trial_push;
+  if (args.has("--restart-after")) s.search.restart_after = args.restart_after;
   if (args.has("--optimizer")) {
     Result<search::OptimizerKind> kind = search::optimizerFromName(args.optimizer);
     if (!kind.ok()) return Status::error("--optimizer: " + kind.message());
@@ -409,6 +411,12 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       ->add_option("--trial-push", args->trial_push,
                    "The trials' push per kg of body, m/s (default 0.3: 21 N s on 70 kg)")
       ->check(CLI::Range(0.001, 10.0));
+  command
+      ->add_option("--restart-after", args->restart_after,
+                   "CMA-ES: start again from the DFT prior (the best kept) after G generations "
+                   "without a better best (default 0: never)")
+      ->check(wholeNumber())
+      ->check(CLI::Range(0, 100000));
   command->add_option("--push", args->pushes,
                       "Robustness: every evaluation takes this push, TIME,X,Y,Z[,LINK] (seconds, "
                       "N s); repeatable");
@@ -423,7 +431,8 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   args->body.addTo(*command);
   command->callback([args, command, &exit_code]() {
     for (const char* flag : {"--harmonics", "--terrain", "--window", "--population", "--optimizer",
-                             "--seed", "--no-prior", "--trials", "--trial-push"})
+                             "--seed", "--no-prior", "--trials", "--trial-push",
+                             "--restart-after"})
       if (command->count(flag) > 0) args->given.emplace_back(flag);
     if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");

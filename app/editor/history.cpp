@@ -121,6 +121,8 @@ std::string describeChange(const app::Project& before, const app::Project& after
     changes.push_back(std::string("optimizer ") + search::optimizerName(b.optimizer));
   if (a.seed != b.seed) changes.push_back("seed " + std::to_string(b.seed));
   if (a.trials != b.trials) changes.push_back("trials " + std::to_string(b.trials));
+  if (a.restart_after != b.restart_after)
+    changes.push_back("restart after " + std::to_string(b.restart_after) + " generations");
   if (a.trial_push_m_s != b.trial_push_m_s)
     changes.push_back("trial push " + number(b.trial_push_m_s) + " m/s");
   search::FitnessWeights wa = a.weights, wb = b.weights;

@@ -447,6 +447,49 @@ TEST(SearchCheckpoint, RestartsDoubleThePopulationAndSurviveACheckpoint) {
   expectCheckpointIsSeamless(cmaesFactory(n, ipop), f, "ipop");
 }
 
+// Local restarts: after stall_generations without a better best the run starts again at the
+// initial mean with the initial step size and the same population (not IPOP's random mean and
+// doubled population), the best kept; the stream of samples goes on, so the new run differs.
+TEST(SearchCheckpoint, LocalRestartsStartAgainAtTheInitialMeanAfterAStall) {
+  const int n = 6;
+  CmaesSettings local;
+  local.max_restarts = 3;
+  local.stall_generations = 3;
+  local.initial_mean.assign(n, 0.3);
+  const CostFunction flat = [](const std::vector<double>&) { return 1.0; };
+  std::unique_ptr<Cmaes> c = cmaes(n, local);
+  const int lambda = c->population();
+  const std::vector<std::vector<double>> first = c->ask();
+  std::vector<int> restarted_after;
+  for (int g = 1; g <= 16; ++g) {
+    const int before = c->restarts();
+    step(*c, flat);
+    if (c->restarts() != before) {
+      restarted_after.push_back(g);
+      for (double m : c->mean()) EXPECT_NEAR(m, 0.3, 1e-12);
+      EXPECT_EQ(c->sigma(), local.initial_sigma);
+      EXPECT_EQ(c->population(), lambda);
+      EXPECT_NE(c->ask(), first);  // a new sample, not the first run again
+    }
+  }
+  // The first generation finds the best (1.0); nothing beats it, so each run stops after it
+  // has gone 3 generations without a better one: generations 4, 8 and 12; at 16 the last run
+  // stalls with no restart left.
+  EXPECT_EQ(restarted_after, (std::vector<int>{4, 8, 12}));
+  EXPECT_EQ(c->bestCost(), 1.0);
+  EXPECT_EQ(c->stopReason(), "stall");
+  EXPECT_TRUE(c->converged());
+  // A run that keeps improving does not restart (a generation's best is noisy: 8, not 3).
+  CmaesSettings patient = local;
+  patient.stall_generations = 8;
+  std::unique_ptr<Cmaes> improving = cmaes(n, patient);
+  const CostFunction f = sphere(shiftedOptimum(n));
+  for (int g = 0; g < 30; ++g) step(*improving, f);
+  std::printf("  local restarts on the sphere in 30 generations: %d\n", improving->restarts());
+  EXPECT_EQ(improving->restarts(), 0);
+  expectCheckpointIsSeamless(cmaesFactory(n, local), rastrigin(shiftedOptimum(n)), "local");
+}
+
 TEST(SearchCheckpoint, CorruptedStatesAreRefusedNamingTheField) {
   const int n = 4;
   const CostFunction f = sphere(shiftedOptimum(n));

@@ -89,7 +89,7 @@ void drawRunningSettings(const EvolutionState& evolution) {
                       evolution.started.search.no_prior ? ", no prior" : "");
 }
 
-// Budget, window, prior, optimiser, population, seed and trials of the next search.
+// Budget, window, prior, optimiser, population, seed, trials and restarts of the next search.
 void drawSearchSettings(EvolutionState& evolution) {
   ImGui::SetNextItemWidth(120.0f);
   float minutes = static_cast<float>(evolution.settings.search.minutes);
@@ -125,6 +125,13 @@ void drawSearchSettings(EvolutionState& evolution) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Runs per individual: the unpushed one and trials - 1 pushed to the left, "
                       "right, back and forward; the cost is their mean (slower, sturdier gaits)");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("restart after", &evolution.settings.search.restart_after, 1, 5);
+  evolution.settings.search.restart_after = std::clamp(evolution.settings.search.restart_after, 0, 100000);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("CMA-ES: start again from the clip's DFT after this many generations "
+                      "without a better best, keeping the best (0: never)");
 }
 
 // Live: a running search takes them from its next generation.

@@ -174,6 +174,7 @@ search::EvolveSettings evolveSettings(const SearchSettings& search) {
   settings.generations = 0;
   settings.minutes = search.minutes;
   settings.seed = search.seed;
+  settings.restart_after = search.restart_after;
   return settings;
 }
 

@@ -18,7 +18,7 @@ using Eigen::VectorXd;
 using nlohmann::json;
 
 constexpr double kMaxCondition = 1e14;  // of the covariance: beyond it, numerics are lost
-constexpr int kMaxRestarts = 20;
+constexpr int kMaxRestarts = kMaxCmaesRestarts;
 constexpr long long kMaxPopulation = 1 << 24;  // after every restart
 constexpr int kMaxDimension = 1 << 20;
 
@@ -85,8 +85,10 @@ Status CmaesSettings::validate(int dimension) const {
   }
   if (max_restarts < 0 || max_restarts > kMaxRestarts)
     return Status::error("max_restarts must be in [0, " + std::to_string(kMaxRestarts) + "]");
+  if (stall_generations < 0 || stall_generations > 1000000)
+    return Status::error("stall_generations must be in [0, 1000000]");
   const long long lambda = population > 0 ? population : defaultPopulation(dimension);
-  if ((lambda << max_restarts) > kMaxPopulation)
+  if (stall_generations == 0 && (lambda << max_restarts) > kMaxPopulation)
     return Status::error("population x 2^max_restarts must stay <= " +
                          std::to_string(kMaxPopulation));
   if (!(std::isfinite(tol_x) && tol_x >= 0.0)) return Status::error("tol_x must be >= 0");
@@ -162,6 +164,8 @@ void Cmaes::restart(const std::vector<double>& internal_mean) {
   decomposed_at_ = evaluations();
   run_generation_ = 0;
   history_.clear();
+  run_best_ = std::numeric_limits<double>::infinity();
+  run_best_at_ = 0;
   stop_.clear();
 }
 
@@ -224,6 +228,8 @@ std::string Cmaes::stopTest(std::span<const double> costs, const std::vector<int
 
   const auto [lo, hi] = std::minmax_element(scales_.begin(), scales_.end());
   if ((*hi / *lo) * (*hi / *lo) > kMaxCondition) return "condition";
+  if (settings_.stall_generations > 0 && run_generation_ - run_best_at_ >= settings_.stall_generations)
+    return "stall";
   return {};
 }
 
@@ -281,8 +287,13 @@ void Cmaes::advance(std::span<const double> costs, const std::vector<int>& order
   // Cumulative step-size adaptation: lengthen when the path is longer than a random walk's.
   sigma_ *= std::exp((cs_ / damps_) * (ps_norm / chin_ - 1.0));
 
-  history_.push_back(costs[static_cast<size_t>(order.front())]);
+  const double generation_best = costs[static_cast<size_t>(order.front())];
+  history_.push_back(generation_best);
   if (history_.size() > static_cast<size_t>(history_length_)) history_.erase(history_.begin());
+  if (std::isfinite(generation_best) && generation_best < run_best_) {
+    run_best_ = generation_best;
+    run_best_at_ = run_generation_;
+  }
 
   stop_.clear();
   if (settings_.diagonal) {
@@ -293,7 +304,13 @@ void Cmaes::advance(std::span<const double> costs, const std::vector<int>& order
   }
   if (stop_.empty()) stop_ = stopTest(costs, order);
 
-  if (!stop_.empty() && restarts_ < settings_.max_restarts) {
+  if (!stop_.empty() && restarts_ < settings_.max_restarts && settings_.stall_generations > 0) {
+    ++restarts_;  // local: the initial mean, the same population
+    std::vector<double> mean(un, 0.5);
+    if (!settings_.initial_mean.empty()) mean = settings_.initial_mean;
+    for (double& m : mean) m = inverseBoundaryTransform(m);
+    restart(mean);
+  } else if (!stop_.empty() && restarts_ < settings_.max_restarts) {
     ++restarts_;
     configure(2 * lambda_);
     std::vector<double> mean(un);
@@ -320,7 +337,8 @@ void Cmaes::saveDetails(json& state) const {
       {"population", settings_.population},     {"initial_sigma", settings_.initial_sigma},
       {"initial_mean", settings_.initial_mean}, {"diagonal", settings_.diagonal},
       {"max_restarts", settings_.max_restarts}, {"tol_x", settings_.tol_x},
-      {"tol_fun", settings_.tol_fun},           {"seed", settings_.seed}};
+      {"tol_fun", settings_.tol_fun},           {"seed", settings_.seed},
+      {"stall_generations", settings_.stall_generations}};
   state["rng"] = random_.saveState();
   state["lambda"] = lambda_;
   state["mean"] = mean_;
@@ -341,6 +359,8 @@ void Cmaes::saveDetails(json& state) const {
   for (double h : history_) history.push_back(state_json::cost(h));
   state["history"] = history;
   state["restarts"] = restarts_;
+  state["run_best"] = state_json::cost(run_best_);
+  state["run_best_at"] = run_best_at_;
   state["stop"] = stop_;
 }
 
@@ -367,6 +387,8 @@ Result<std::unique_ptr<Cmaes>> Cmaes::load(const json& state) {
   if (s.ok()) s = sj::readNumber(js, "tol_x", in_settings, settings.tol_x);
   if (s.ok()) s = sj::readNumber(js, "tol_fun", in_settings, settings.tol_fun);
   if (s.ok()) s = sj::readUint64(js, "seed", in_settings, settings.seed);
+  if (s.ok() && js.contains("stall_generations"))  // states from before local restarts: off
+    s = sj::readInt(js, "stall_generations", in_settings, 0, 1000000, settings.stall_generations);
   if (!s.ok()) return s;
   if (Status v = settings.validate(n); !v.ok())
     return Status::error(in_settings + ": " + v.message());
@@ -409,10 +431,24 @@ Result<std::unique_ptr<Cmaes>> Cmaes::load(const json& state) {
     s = sj::readCosts(state, "history", where, static_cast<size_t>(c->history_length_),
                       c->history_);
   if (s.ok()) s = sj::readInt(state, "restarts", where, 0, settings.max_restarts, c->restarts_);
+  if (s.ok() && state.contains("run_best")) {  // states from before local restarts: recomputed
+    s = sj::readCost(state, "run_best", where, c->run_best_);
+    if (s.ok())
+      s = sj::readInt(state, "run_best_at", where, 0, c->run_generation_, c->run_best_at_);
+  } else if (s.ok()) {
+    c->run_best_ = std::numeric_limits<double>::infinity();
+    const size_t kept = c->history_.size();  // the last entry is run_generation_'s
+    for (size_t g = 0; g < kept; ++g)
+      if (std::isfinite(c->history_[g]) && c->history_[g] < c->run_best_) {
+        c->run_best_ = c->history_[g];
+        c->run_best_at_ = c->run_generation_ - static_cast<int>(kept - 1 - g);
+      }
+  }
   if (s.ok()) s = sj::readString(state, "stop", where, c->stop_);
   if (s.ok() && !(c->stop_.empty() || c->stop_ == "tol_x" || c->stop_ == "tol_fun" ||
-                  c->stop_ == "condition"))
-    s = Status::error(where + ": stop: expected \"\", \"tol_x\", \"tol_fun\" or \"condition\"");
+                  c->stop_ == "condition" || c->stop_ == "stall"))
+    s = Status::error(where +
+                      ": stop: expected \"\", \"tol_x\", \"tol_fun\", \"condition\" or \"stall\"");
   if (!s.ok()) return s;
   return c;
 }

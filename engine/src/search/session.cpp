@@ -98,6 +98,8 @@ Status EvolveSettings::validate() const {
   if (nice < 0 || nice > 19) return Status::error("nice must be 0..19");
   if (!(std::isfinite(initial_sigma) && initial_sigma > 0.0 && initial_sigma <= 1.0))
     return Status::error("initial_sigma must be in (0, 1]");
+  if (restart_after < 0 || restart_after > 100000)
+    return Status::error("restart_after must be 0 (never) to 100000 generations");
   return Status();
 }
 
@@ -121,6 +123,8 @@ Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSe
     c.initial_mean = start;
     c.diagonal = n > kDiagonalAbove;
     c.seed = settings.seed;
+    c.stall_generations = settings.restart_after;
+    c.max_restarts = settings.restart_after > 0 ? kMaxCmaesRestarts : 0;
     Result<std::unique_ptr<Cmaes>> made = Cmaes::create(n, c);
     if (!made.ok()) return made.status();
     session->optimizer_ = std::move(made).value();
@@ -159,6 +163,7 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     settings.seed = s.at("seed").get<std::uint64_t>();
     settings.initial_sigma = s.at("initial_sigma").get<double>();
     settings.record_population = s.at("record_population").get<bool>();
+    settings.restart_after = s.value("restart_after", 0);  // checkpoints from before: off
     if (Status st = settings.validate(); !st.ok())
       return Status::error("checkpoint: settings: " + st.message());
     if (checkpoint.at("genome_size").get<int>() != problem.layout.size())
@@ -237,7 +242,8 @@ nlohmann::json Session::checkpoint() const {
             {"threads", settings_.threads},
             {"seed", settings_.seed},
             {"initial_sigma", settings_.initial_sigma},
-            {"record_population", settings_.record_population}}},
+            {"record_population", settings_.record_population},
+            {"restart_after", settings_.restart_after}}},
           {"genome_size", problem_.layout.size()},
           {"weights", weightsJson(problem_.weights)},
           {"optimizer", optimizer_->saveState()},

@@ -17,6 +17,12 @@
 // Restarts (IPOP, Auger & Hansen 2005), off by default: when a stopping test fires and restarts
 // remain, the run starts again with twice the population from a uniformly random mean. The best
 // point is kept across restarts.
+//
+// Local restarts on a stall (`stall_generations` > 0): a run whose best cost has not improved for
+// that many generations stops ("stall"), and while restarts remain it starts again from the
+// initial mean with the initial step size and the same population, the random stream going on.
+// For a search seeded from a prior (the DFT of the clip) the good points lie near the prior, not
+// anywhere in the box; what differs between runs is where the first generations lead.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +36,7 @@
 namespace sinew::search {
 
 inline constexpr double kBoundaryZone = 0.05;  // width of the quadratic zone at each bound
+inline constexpr int kMaxCmaesRestarts = 20;   // CmaesSettings::max_restarts at most
 
 // Internal coordinate -> [0, 1] (see above); continuous with a continuous first derivative,
 // periodic with period 2 (1 + 2 kBoundaryZone).
@@ -44,7 +51,10 @@ struct CmaesSettings {
   std::vector<double> initial_mean;  // (n) start, each in [0, 1] (e.g. a prior from the motion's
                                      // spectrum); empty: 0.5 everywhere
   bool diagonal = false;             // sep-CMA-ES: diagonal covariance (see above)
-  int max_restarts = 0;              // IPOP restarts, each doubling the population, >= 0
+  int max_restarts = 0;              // IPOP restarts, each doubling the population, >= 0 (with
+                                     // stall_generations: local restarts, same population)
+  int stall_generations = 0;         // > 0: restart from the initial mean after this many
+                                     // generations without a better best in the run; 0: off
   double tol_x = 1e-11;              // stop when sigma * max(sqrt(C_ii), |pc_i|) < tol_x for every
                                      // coordinate, normalised units, >= 0
   double tol_fun = 1e-12;            // stop when the generation's costs and the best costs of the
@@ -70,8 +80,9 @@ class Cmaes final : public Optimizer {
   double sigma() const { return sigma_; }  // step size, normalised units
   // sqrt(largest / smallest eigenvalue) of the covariance, at the last decomposition.
   double axisRatio() const;
-  int restarts() const { return restarts_; }  // IPOP restarts done
-  // The stopping test that fired last ("tol_x", "tol_fun", "condition"), empty while running.
+  int restarts() const { return restarts_; }  // restarts done (IPOP or local)
+  // The stopping test that fired last ("tol_x", "tol_fun", "condition", "stall"), empty while
+  // running.
   const std::string& stopReason() const { return stop_; }
 
  private:
@@ -110,6 +121,8 @@ class Cmaes final : public Optimizer {
   int run_generation_ = 0;       // generations since the last (re)start
   std::vector<double> history_;  // best cost of each of the last history_length_ generations
   int restarts_ = 0;
+  double run_best_ = std::numeric_limits<double>::infinity();  // the best finite cost since the last (re)start (+inf: none yet)
+  int run_best_at_ = 0;    // run_generation_ when it was found
   std::string stop_;
 };
 

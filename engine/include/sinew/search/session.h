@@ -63,6 +63,9 @@ struct EvolveSettings {
   std::uint64_t seed = 1;
   double initial_sigma = 0.02;     // CMA-ES step size (GA: mutation scale), normalised units,
                                    // (0, 1]: small, the prior walks already
+  int restart_after = 0;  // CMA-ES: a local restart (from the start point, a fresh stream of
+                          // samples, the best kept) after this many generations without a
+                          // better best; 0: never (CmaesSettings::stall_generations)
   bool record_population = false;  // keep every individual's recorded motion in the snapshots
   int nice = 0;  // 0..19: the search threads' niceness (Linux). The editor uses 10 so that its UI
                  // thread gets the cores first while the search still takes whatever is left.
