@@ -6,6 +6,7 @@
 #include <initializer_list>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/path_json.h"
 #include "sinew/core/text.h"
 #include "sinew/spectral/target_io.h"
 #include "state_json.h"
@@ -25,11 +26,9 @@ nlohmann::json balanceJson(physics::BalanceGains gains) {
 
 Status saveController(const std::filesystem::path& path, const ControllerFile& c,
                       const motion::Skeleton& skeleton) {
-  const nlohmann::json json = {
+  nlohmann::json json = {
       {"format", "sinew.controller"},
       {"version", 1},
-      {"rig", toUtf8(c.rig)},  // paths are bytes; JSON text is UTF-8
-      {"clip", toUtf8(c.clip)},
       {"target", nlohmann::json::parse(spectral::targetToJson(c.target, skeleton))},
       {"balance", balanceJson(c.balance)},
       {"settings",
@@ -39,6 +38,8 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
         {"optimizer", c.optimizer},
         {"no_prior", c.no_prior}}},
       {"fitness", fitnessJson(c.fitness)}};
+  writePathJson(json, "rig", c.rig);
+  writePathJson(json, "clip", c.clip);
   return writeFileAtomically(
       path, json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
@@ -124,7 +125,8 @@ Result<ControllerFile> controllerFromJson(std::string_view text, const motion::S
     if (Status s = state_json::readInt(json, "version", name, 1, 1, version); !s.ok()) return s;
     ControllerFile c;
     unknownKeys(json,
-                {"format", "version", "rig", "clip", "target", "balance", "settings", "fitness"},
+                {"format", "version", "rig", "rig_encoding", "clip", "clip_encoding", "target",
+                 "balance", "settings", "fitness"},
                 name, c.warnings);
     if (!json.contains("target"))
       return Status::error(name +
@@ -141,10 +143,8 @@ Result<ControllerFile> controllerFromJson(std::string_view text, const motion::S
       if (!fitness.ok()) return Status::error(name + ": fitness: " + fitness.message());
       c.fitness = fitness.value();
     }
-    if (json.contains("rig") && !state_json::readString(json, "rig", name, c.rig).ok())
-      return Status::error(name + ": rig: expected a string");
-    if (json.contains("clip") && !state_json::readString(json, "clip", name, c.clip).ok())
-      return Status::error(name + ": clip: expected a string");
+    if (Status s = readPathJson(json, "rig", c.rig, name + ": "); !s.ok()) return s;
+    if (Status s = readPathJson(json, "clip", c.clip, name + ": "); !s.ok()) return s;
     return c;
   } catch (const std::exception& e) {
     return Status::error(name + ": " + e.what());
