@@ -367,7 +367,8 @@ struct World::Impl {
   void placeOnGround(const LinkPose& initial) {
     double lowest = std::numeric_limits<double>::max();
     for (size_t li = 0; li < plan.links.size(); ++li)
-      lowest = std::min(lowest, lowestPoint(plan.links[li].shape, linkTransform(static_cast<int>(li))));
+      lowest =
+          std::min(lowest, lowestPoint(plan.links[li].shape, linkTransform(static_cast<int>(li))));
     glm::dvec3 base_position = initial.base_position;
     double ground = -std::numeric_limits<double>::max();
     const double reach = 0.5 * std::max(plan.size_m, 0.1);
