@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "sinew/core/rotation.h"
+
 namespace sinew::physics {
 namespace {
 
@@ -33,26 +35,6 @@ bool finite(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-glm::dquat positiveW(glm::dquat q) {
-  return q.w < 0.0 ? -q : q;
-}
-
-// Rotation vector (log map) of a unit quaternion, radians.
-glm::dvec3 rotationVector(glm::dquat q) {
-  q = positiveW(glm::normalize(q));
-  const glm::dvec3 v(q.x, q.y, q.z);
-  const double s = glm::length(v);
-  if (s < 1e-12) return 2.0 * v;
-  return v * (2.0 * std::atan2(s, q.w) / s);
-}
-
-// Exponential map: the unit quaternion of a rotation vector, radians.
-glm::dquat fromRotationVector(const glm::dvec3& v) {
-  const double angle = glm::length(v);
-  if (angle < 1e-12) return glm::normalize(glm::dquat(1.0, 0.5 * v.x, 0.5 * v.y, 0.5 * v.z));
-  return glm::angleAxis(angle, v / angle);
-}
-
 // Per-axis extremes of the rotation vectors of `qs` about `center` (log(center^-1 q)).
 void rangeAbout(const glm::dquat& center, std::span<const glm::dquat> qs, glm::dvec3& lo,
                 glm::dvec3& hi) {
@@ -60,7 +42,7 @@ void rangeAbout(const glm::dquat& center, std::span<const glm::dquat> qs, glm::d
   hi = glm::dvec3(-std::numeric_limits<double>::max());
   const glm::dquat inverse = glm::inverse(center);
   for (const glm::dquat& q : qs) {
-    const glm::dvec3 v = rotationVector(inverse * q);
+    const glm::dvec3 v = shortRotationVector(glm::normalize(inverse * q));
     lo = glm::min(lo, v);
     hi = glm::max(hi, v);
   }
@@ -375,7 +357,7 @@ glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double an
 }
 
 glm::dvec3 ballRangeCoordinates(const Link& link, const glm::dquat& q) {
-  return rotationVector(glm::inverse(link.ball_center) * q);
+  return shortRotationVector(glm::normalize(glm::inverse(link.ball_center) * q));
 }
 
 glm::dquat clampToBallRange(const Link& link, const glm::dquat& q) {
@@ -778,9 +760,8 @@ ObservedRotations observedRotations(const Link& link, const motion::Clip& clip) 
     if (glm::dot(q, previous) < 0.0) q = -q;
     previous = q;
     out.qs[f] = q;
-    const double d = std::abs(glm::dot(q, out.qs[0]));
-    out.max_from_first = std::max(out.max_from_first, 2.0 * std::acos(std::min(1.0, d)));
-    const glm::dvec3 v = rotationVector(q);
+    out.max_from_first = std::max(out.max_from_first, angleBetween(out.qs[0], q));
+    const glm::dvec3 v = shortRotationVector(glm::normalize(q));
     out.moment += glm::outerProduct(v, v);
   }
   return out;

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "sinew/core/rotation.h"
 #include "sinew/physics/controller.h"
 #include "sinew/physics/divergence.h"
 
@@ -192,7 +193,8 @@ void addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose&
     const JointType type = plan.links[li].type;
     if (type == JointType::kBall)
       sum += std::pow(
-          glm::length(rotationVectorOf(glm::inverse(now.rotations[li]) * wanted.rotations[li])),
+          glm::length(shortRotationVector(
+              glm::normalize(glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
           2.0);
     else if (type == JointType::kHinge)
       sum +=
