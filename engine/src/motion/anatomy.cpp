@@ -242,8 +242,8 @@ FrameDetection unitByFamily(const FigureMeasure& figure, UpAxis up, const SizeRa
   result.height_m = figure.height * metresPerUnit(best);
   std::ostringstream reason;
   reason.precision(3);
-  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), "
-         << range.size << " file units " << range.what << " along " << upAxisName(up) << ": "
+  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), " << range.size
+         << " file units " << range.what << " along " << upAxisName(up) << ": "
          << range.size * metresPerUnit(best) << " m in " << unitName(best)
          << (best_distance == 0.0 ? ", inside " : ", the nearest to ") << range.lo << "-"
          << range.hi << " m" << overrideNote(up_stated);

@@ -186,8 +186,8 @@ void PdController::computeTorques(const World& world, const LinkPose& target,
   for (size_t li = 1; li < n; ++li) {
     const size_t o = static_cast<size_t>(offsets_[li]);
     if (types_[li] == JointType::kBall) {
-      const glm::dvec3 error =
-          shortRotationVector(glm::normalize(glm::inverse(current.rotations[li]) * target.rotations[li]));
+      const glm::dvec3 error = shortRotationVector(
+          glm::normalize(glm::inverse(current.rotations[li]) * target.rotations[li]));
       glm::dvec3 tau;
       for (int d = 0; d < 3; ++d) {
         const DofGains& g = gains[o + static_cast<size_t>(d)];

@@ -192,10 +192,9 @@ void addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose&
   for (size_t li = 1; li < plan.links.size(); ++li) {
     const JointType type = plan.links[li].type;
     if (type == JointType::kBall)
-      sum += std::pow(
-          glm::length(shortRotationVector(
-              glm::normalize(glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
-          2.0);
+      sum += std::pow(glm::length(shortRotationVector(
+                          glm::normalize(glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
+                      2.0);
     else if (type == JointType::kHinge)
       sum +=
           std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
