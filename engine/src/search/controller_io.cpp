@@ -6,6 +6,7 @@
 #include <initializer_list>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/json_keys.h"
 #include "sinew/core/path_json.h"
 #include "sinew/core/text.h"
 #include "sinew/spectral/target_io.h"
@@ -46,17 +47,6 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
 
 namespace {
 
-// Keys of `object` not in `known`, as warnings naming the file and the key.
-void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*> known,
-                 const std::string& where, std::vector<std::string>& warnings) {
-  if (!object.is_object()) return;
-  for (const auto& item : object.items()) {
-    bool found = false;
-    for (const char* k : known) found = found || item.key() == k;
-    if (!found) warnings.push_back(where + ": unknown key '" + item.key() + "' (ignored)");
-  }
-}
-
 // The first five gains are required; the ankle gains and swing_lift came later: a file without
 // them was made without them, and replays so (0).
 Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
@@ -67,7 +57,7 @@ Status readBalance(const nlohmann::json& json, const std::string& name, Controll
   unknownKeys(*b.value(),
               {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso", "ankle_sagittal",
                "ankle_coronal", "swing_lift"},
-              where, c.warnings);
+              where, &c.warnings);
   for (int i = 0; i < physics::kBalanceGainCount; ++i) {
     const char* key = physics::balanceGainName(i);
     double& gain = physics::balanceGain(c.balance, i);
@@ -92,7 +82,7 @@ Status readSettings(const nlohmann::json& json, const std::string& name, Control
   if (!found.ok()) return found.status();
   const nlohmann::json& s = *found.value();
   const std::string where = name + ": settings";
-  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior"}, where, c.warnings);
+  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior"}, where, &c.warnings);
   if (Status st = readNumber(s, "window_s", where, c.window_s); !st.ok()) return st;
   if (!(c.window_s > 0.0 && c.window_s <= 3600.0))
     return Status::error(where + ": window_s: expected seconds in (0, 3600]");
@@ -127,7 +117,7 @@ Result<ControllerFile> controllerFromJson(std::string_view text, const motion::S
     unknownKeys(json,
                 {"format", "version", "rig", "rig_encoding", "clip", "clip_encoding", "target",
                  "balance", "settings", "fitness"},
-                name, c.warnings);
+                name, &c.warnings);
     if (!json.contains("target"))
       return Status::error(name +
                            ": target: missing (the controller's coefficients; a best.json "

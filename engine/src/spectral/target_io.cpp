@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/json_keys.h"
 #include "sinew/core/text.h"
 #include "sinew/spectral/limits.h"
 
@@ -49,17 +50,6 @@ Status wholeNumber(const json& object, const char* key, const std::string& where
   }
   out = static_cast<int>(value);
   return {};
-}
-
-// Keys of `object` that are not in `known`, reported as "<where>: unknown key 'k' (ignored)".
-void unknownKeys(const json& object, std::initializer_list<const char*> known,
-                 const std::string& where, std::vector<std::string>* warnings) {
-  if (warnings == nullptr || !object.is_object()) return;
-  for (const auto& item : object.items()) {
-    bool found = false;
-    for (const char* k : known) found = found || item.key() == k;
-    if (!found) warnings->push_back(where + ": unknown key '" + item.key() + "' (ignored)");
-  }
 }
 
 // An array at `key` (empty when absent) of at most `limit` entries.
