@@ -3,6 +3,8 @@
 // stderr ("sinew: <file>:<line>: <reason>").
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -35,9 +37,10 @@ nlohmann::json glitchJson(const motion::MotionAsset& asset, int clip);
 
 int fail(const std::string& message);  // prints "sinew: message" to stderr, returns 1
 
-// For integer options: digits only ("4.5", "-1" and "1e9" are refused rather than truncated or
-// wrapped; CLI11 alone reads "-1" into an unsigned 64-bit seed as 2^64 - 1).
-CLI::Validator wholeNumber();
+// For integer options: digits only, at most `max` ("4.5", "-1" and "1e9" are refused rather than
+// truncated or wrapped; CLI11 alone reads "-1" into an unsigned 64-bit seed as 2^64 - 1). The
+// message names the range: "expected a whole number from 0 to 10000, got '1e9'".
+CLI::Validator wholeNumber(std::uint64_t max = std::numeric_limits<std::uint64_t>::max());
 
 void addInfoCommand(CLI::App& app, int& exit_code);
 void addConvertCommand(CLI::App& app, int& exit_code);

@@ -374,11 +374,9 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       ->add_option("--population", args->population,
                    "Individuals per generation (default: "
                    "CMA-ES 4 + 3 ln n, GA 32)")
-      ->check(wholeNumber())
-      ->check(CLI::Range(0, 10000));
+      ->check(wholeNumber(10000));
   command->add_option("--generations", args->generations, "Generations (default 40)")
-      ->check(wholeNumber())
-      ->check(CLI::Range(0, 1000000));
+      ->check(wholeNumber(1000000));
   command->add_option("--minutes", args->minutes, "Wall-clock budget, minutes")
       ->check(CLI::Range(0.0, 100000.0));
   command->add_option("--window", args->window, "Seconds simulated per evaluation (default 10)")

@@ -1,3 +1,4 @@
+#include <charconv>
 #include <iostream>
 #include <set>
 
@@ -53,14 +54,20 @@ Result<int> selectClip(const motion::MotionAsset& asset, const std::string& name
                        "'; the file has: " + names);
 }
 
-CLI::Validator wholeNumber() {
+CLI::Validator wholeNumber(std::uint64_t max) {
+  const bool bounded = max != std::numeric_limits<std::uint64_t>::max();
+  const std::string range = bounded ? "from 0 to " + std::to_string(max) : ">= 0";
   return CLI::Validator(
-      [](std::string& text) {
-        const bool digits = !text.empty() && text.size() <= 19 &&
-                            text.find_first_not_of("0123456789") == std::string::npos;
-        return digits ? std::string() : "expected a whole number >= 0, got '" + text + "'";
+      [max, range](std::string& text) {
+        std::uint64_t value = 0;
+        const bool digits =
+            !text.empty() && text.size() <= 19 &&
+            text.find_first_not_of("0123456789") == std::string::npos &&
+            std::from_chars(text.data(), text.data() + text.size(), value).ec == std::errc();
+        return digits && value <= max ? std::string()
+                                      : "expected a whole number " + range + ", got '" + text + "'";
       },
-      "N >= 0");
+      bounded ? "N in [0 - " + std::to_string(max) + "]" : "N >= 0");
 }
 
 std::string glitchSummary(const motion::MotionAsset& asset, int clip) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/path_json.h"
 #include "sinew/core/text.h"
 
 namespace sinew::app {
@@ -60,27 +61,6 @@ std::string relativeTo(const std::string& file, const std::filesystem::path& bas
   if (!path.is_absolute()) return file;
   const std::filesystem::path relative = path.lexically_relative(base);
   return relative.empty() ? file : relative.generic_string();
-}
-
-// A path as JSON text. Paths are bytes: one that is not UTF-8 (a Latin-1 folder name) is written
-// as its Latin-1 reading with "<key>_encoding": "latin1" beside it, so readPath gives back the
-// same bytes (a resumed search finds its rig; JSON itself cannot hold the bytes).
-void writePath(json& object, const std::string& key, const std::string& path) {
-  object[key] = toUtf8(path);
-  if (!isValidUtf8(path)) object[key + "_encoding"] = "latin1";
-}
-
-Status readPath(const json& object, const std::string& key, std::string& out,
-                const std::string& where) {
-  if (Status s = read(object, key.c_str(), out, where); !s.ok()) return s;
-  const std::string encoding = key + "_encoding";
-  if (!object.contains(encoding)) return Status();
-  if (object.at(encoding) != "latin1")
-    return Status::error(where + encoding + ": expected \"latin1\", got " + object.at(encoding).dump());
-  std::optional<std::string> bytes = latin1FromUtf8(out);
-  if (!bytes) return Status::error(where + key + ": not Latin-1 text, which " + encoding + " says it is");
-  out = std::move(*bytes);
-  return Status();
 }
 
 json weightsJson(const search::FitnessWeights& weights) {
@@ -247,10 +227,10 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     if (status.ok() && !s.ok()) status = std::move(s);
   };
   if (!document.contains("rig")) return Status::error(where + "rig: missing (the rig file)");
-  check(readPath(document, "rig", project.rig, where));
-  check(readPath(document, "clip", project.clip, where));
+  check(readPathJson(document, "rig", project.rig, where));
+  check(readPathJson(document, "clip", project.clip, where));
   check(read(document, "animation", project.animation, where));
-  check(readPath(document, "target", project.target, where));
+  check(readPathJson(document, "target", project.target, where));
   check(read(document, "harmonics", project.harmonics, where));
   check(read(document, "window_s", project.physics.window_s, where));
   std::string terrain = "flat";
@@ -294,8 +274,8 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
                 in.substr(where.size()), name, warnings);
     StylePair pair;
     check(read(item, "label", pair.label, in));
-    check(readPath(item, "neutral", pair.neutral, in));
-    check(readPath(item, "styled", pair.styled, in));
+    check(readPathJson(item, "neutral", pair.neutral, in));
+    check(readPathJson(item, "styled", pair.styled, in));
     check(read(item, "weight", pair.weight, in));
     if (status.ok() && (pair.neutral.empty() || pair.styled.empty()))
       return Status::error(in + "neutral/styled: both clips are needed");
@@ -372,10 +352,10 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
   json out = json::object();
   out["format"] = "sinew.project";
   out["version"] = kProjectVersion;
-  writePath(out, "rig", relativeTo(project.rig, base));
-  if (!project.clip.empty()) writePath(out, "clip", relativeTo(project.clip, base));
+  writePathJson(out, "rig", relativeTo(project.rig, base));
+  if (!project.clip.empty()) writePathJson(out, "clip", relativeTo(project.clip, base));
   if (!project.animation.empty()) out["animation"] = project.animation;
-  if (!project.target.empty()) writePath(out, "target", relativeTo(project.target, base));
+  if (!project.target.empty()) writePathJson(out, "target", relativeTo(project.target, base));
   out["harmonics"] = project.harmonics;
   if (!project.joint_k.empty()) out["joint_harmonics"] = project.joint_k;
   const MotionEdits& edits = project.edits;
@@ -393,8 +373,8 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
     json styles = json::array();
     for (const StylePair& pair : edits.styles) {
       json item = {{"label", pair.label}, {"weight", pair.weight}};
-      writePath(item, "neutral", relativeTo(pair.neutral, base));
-      writePath(item, "styled", relativeTo(pair.styled, base));
+      writePathJson(item, "neutral", relativeTo(pair.neutral, base));
+      writePathJson(item, "styled", relativeTo(pair.styled, base));
       styles.push_back(std::move(item));
     }
     out["styles"] = styles;

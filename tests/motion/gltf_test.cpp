@@ -917,6 +917,11 @@ TEST(GltfUnitsTest, UnscaledCentimetreFigureFallsBackToAnatomy) {
   EXPECT_EQ(asset.detection.frame.unit, LengthUnit::kCentimetres) << asset.detection.reason;
   EXPECT_EQ(asset.detection.reason.rfind("implausible in the file's m; human", 0), 0u)
       << asset.detection.reason;
+  // glTF is Y-up by specification and --up is for BVH: the reason offers only --units.
+  const std::string& reason = asset.detection.reason;
+  EXPECT_EQ(reason.substr(reason.size() - 24), " (override with --units)") << reason;
+  EXPECT_EQ(reason.find("--up"), std::string::npos) << reason;
+  EXPECT_NE(reason.find(" along Y"), std::string::npos) << reason;
   EXPECT_NEAR(asset.detection.height_m, 1.7, 1e-6);
   EXPECT_NEAR(asset.skeleton.offsets[asset.skeleton.findJoint("Hips")].y, 0.9, 1e-9);
   EXPECT_NEAR(asset.meshes[0].positions[2].y, 1.0f, 1e-6f);  // 100 cm

@@ -96,6 +96,35 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
             (dir / "edited.json").string() + ": balance: swing_lift: expected a share from 0 to 0.1");
 }
 
+// Paths are bytes: a Latin-1 rig or clip path comes back as the same bytes (core's path_json, the
+// project's and the checkpoint's code); a wrong encoding is refused naming the field.
+TEST(SearchBadInput, ControllerPathsRoundTripAsBytes) {
+  const physics::test_util::Character c = biped();
+  test::TempDir dir;
+  ControllerFile file;
+  file.target = c.target;
+  file.rig =
+      "/captures/H\xFC"
+      "fte/walk_\xE9.bvh";
+  file.clip = "/captures/plain.bvh";
+  ASSERT_TRUE(saveController(dir / "best.json", file, c.asset.skeleton).ok());
+  const nlohmann::json json = nlohmann::json::parse(test::readText(dir / "best.json"));
+  EXPECT_EQ(json["rig"],
+            "/captures/H\xC3\xBC"
+            "fte/walk_\xC3\xA9.bvh");
+  EXPECT_EQ(json["rig_encoding"], "latin1");
+  EXPECT_FALSE(json.contains("clip_encoding"));
+  Result<ControllerFile> back = loadController(dir / "best.json", c.asset.skeleton);
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_EQ(back.value().rig, file.rig);
+  EXPECT_EQ(back.value().clip, file.clip);
+  EXPECT_TRUE(back.value().warnings.empty());
+  Result<ControllerFile> wrong = editedController(
+      c, [](nlohmann::json& j) { j["rig"] = "a.bvh", j["rig_encoding"] = "utf16"; }, dir);
+  EXPECT_EQ(wrong.message(),
+            (dir / "edited.json").string() + ": rig_encoding: expected \"latin1\", got \"utf16\"");
+}
+
 TEST(SearchBadInput, UnknownControllerKeysAreWarnings) {
   const physics::test_util::Character c = biped();
   test::TempDir dir;

@@ -192,9 +192,15 @@ const char* familyLabel(const FigureMeasure& figure) {
   return figure.human ? "human" : familyName(figure.family);
 }
 
+// The flags that override a detection, for its reason: a format that states its up axis (glTF)
+// takes only --units.
+const char* overrideNote(bool up_stated) {
+  return up_stated ? " (override with --units)" : " (override with --units and --up)";
+}
+
 // The unit by the size alone, for figures without a family's range: >= 1000 units as mm, >= 10
 // as cm, else metres.
-FrameDetection unitBySize(const FigureMeasure& figure, UpAxis up) {
+FrameDetection unitBySize(const FigureMeasure& figure, UpAxis up, bool up_stated) {
   FrameDetection result;
   result.frame.up = up;
   result.height_in_file_units = figure.height;
@@ -206,14 +212,15 @@ FrameDetection unitBySize(const FigureMeasure& figure, UpAxis up) {
   reason.precision(3);
   reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), "
          << figure.height << " file units tall along " << upAxisName(up) << " reads as "
-         << unitName(result.frame.unit) << " (override with --units and --up)";
+         << unitName(result.frame.unit) << overrideNote(up_stated);
   result.reason = reason.str();
   return result;
 }
 
 // The unit that puts the family's size inside its range, else the nearest on a log scale; the
 // commonest first, so a tie (both inside the range) goes to the earlier.
-FrameDetection unitByFamily(const FigureMeasure& figure, UpAxis up, const SizeRange& range) {
+FrameDetection unitByFamily(const FigureMeasure& figure, UpAxis up, const SizeRange& range,
+                            bool up_stated) {
   const LengthUnit order[] = {LengthUnit::kCentimetres, LengthUnit::kMetres,
                               LengthUnit::kMillimetres, LengthUnit::kInches,
                               LengthUnit::kCmu,         LengthUnit::kFeet};
@@ -235,16 +242,18 @@ FrameDetection unitByFamily(const FigureMeasure& figure, UpAxis up, const SizeRa
   result.height_m = figure.height * metresPerUnit(best);
   std::ostringstream reason;
   reason.precision(3);
-  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), "
-         << range.size << " file units " << range.what << " along " << upAxisName(up) << ": "
+  reason << familyLabel(figure) << " (" << figure.legs << " legs reach the ground), " << range.size
+         << " file units " << range.what << " along " << upAxisName(up) << ": "
          << range.size * metresPerUnit(best) << " m in " << unitName(best)
          << (best_distance == 0.0 ? ", inside " : ", the nearest to ") << range.lo << "-"
-         << range.hi << " m (override with --units and --up)";
+         << range.hi << " m" << overrideNote(up_stated);
   result.reason = reason.str();
   return result;
 }
 
-FrameDetection chooseUnit(const FigureMeasure& figure, const FigureSizeRanges& ranges) {
+// `up_stated`: the figure was measured along the format's stated up axis, which no flag changes.
+FrameDetection chooseUnit(const FigureMeasure& figure, const FigureSizeRanges& ranges,
+                          bool up_stated) {
   const UpAxis up = figure.up_axis == 2 ? UpAxis::kZ : UpAxis::kY;
   if (!(figure.height > 0.0)) {
     FrameDetection result;
@@ -253,14 +262,15 @@ FrameDetection chooseUnit(const FigureMeasure& figure, const FigureSizeRanges& r
     return result;
   }
   const SizeRange range = sizeRange(figure, ranges);
-  return range.hi > 0.0 ? unitByFamily(figure, up, range) : unitBySize(figure, up);
+  return range.hi > 0.0 ? unitByFamily(figure, up, range, up_stated)
+                        : unitBySize(figure, up, up_stated);
 }
 
 }  // namespace
 
 FrameDetection detectFrame(const Skeleton& skeleton, const Clip& clip,
                            const FigureSizeRanges& ranges) {
-  return chooseUnit(measureFigure(skeleton, clip), ranges);
+  return chooseUnit(measureFigure(skeleton, clip), ranges, false);
 }
 
 FrameDetection detectStatedFrame(const Skeleton& skeleton, const Clip& clip,
@@ -272,7 +282,7 @@ FrameDetection detectStatedFrame(const Skeleton& skeleton, const Clip& clip,
   const bool plausible = range.hi > 0.0 ? metres >= range.lo && metres <= range.hi
                                         : metres < ranges.other_height_max_m;
   if (!(figure.height > 0.0) || !plausible) {
-    FrameDetection chosen = chooseUnit(figure, ranges);
+    FrameDetection chosen = chooseUnit(figure, ranges, true);
     chosen.reason = std::string("implausible in the file's ") +
                     std::string(unitName(stated.unit)) + "; " + chosen.reason;
     return chosen;
@@ -290,7 +300,7 @@ FrameDetection detectStatedFrame(const Skeleton& skeleton, const Clip& clip,
     reason << ", inside " << range.lo << "-" << range.hi << " m";
   else
     reason << ", under " << ranges.other_height_max_m << " m";
-  reason << " (override with --units)";
+  reason << overrideNote(true);
   result.reason = reason.str();
   return result;
 }

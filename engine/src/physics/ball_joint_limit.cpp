@@ -6,6 +6,8 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
+#include "sinew/core/rotation.h"
+
 namespace sinew::physics {
 namespace {
 
@@ -17,14 +19,6 @@ constexpr btScalar kActivationRad = 0.05;
 // Rotation vectors longer than this are near the log map's fold at pi, where a small turn flips
 // v to the far side of the range: no rows there (a plan's ranges stay well inside it).
 constexpr btScalar kFoldRad = 0.9 * SIMD_PI;
-
-// Rotation vector (log map) of a unit quaternion with w >= 0, radians.
-btVector3 logMap(const btQuaternion& q) {
-  const btVector3 v(q.x(), q.y(), q.z());
-  const btScalar s = v.length();
-  if (s < 1e-12) return 2.0 * v;
-  return v * (2.0 * std::atan2(s, q.w()) / s);
-}
 
 // Jr^-1(v): the rotation vector's rate per body angular velocity, d v / dt = Jr^-1(v) w, for
 // q(t + dt) = q(t) exp(w dt) (Bullet's spherical joints integrate their velocity in the link
@@ -81,8 +75,8 @@ btVector3 BallJointLimit::coordinates() const {
   const btScalar* p = m_bodyA->getJointPosMultiDof(m_linkA);
   btQuaternion q = center_inverse_ * btQuaternion(p[0], p[1], p[2], p[3]);
   q.normalize();
-  if (q.w() < 0.0) q = -q;
-  return logMap(q);
+  const glm::dvec3 v = shortRotationVector(glm::dquat(q.w(), q.x(), q.y(), q.z()));
+  return btVector3(v.x, v.y, v.z);
 }
 
 void BallJointLimit::createConstraintRows(btMultiBodyConstraintArray& rows,

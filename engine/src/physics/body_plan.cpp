@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "sinew/core/rotation.h"
+
 namespace sinew::physics {
 namespace {
 
@@ -33,26 +35,6 @@ bool finite(const glm::dvec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-glm::dquat positiveW(glm::dquat q) {
-  return q.w < 0.0 ? -q : q;
-}
-
-// Rotation vector (log map) of a unit quaternion, radians.
-glm::dvec3 rotationVector(glm::dquat q) {
-  q = positiveW(glm::normalize(q));
-  const glm::dvec3 v(q.x, q.y, q.z);
-  const double s = glm::length(v);
-  if (s < 1e-12) return 2.0 * v;
-  return v * (2.0 * std::atan2(s, q.w) / s);
-}
-
-// Exponential map: the unit quaternion of a rotation vector, radians.
-glm::dquat fromRotationVector(const glm::dvec3& v) {
-  const double angle = glm::length(v);
-  if (angle < 1e-12) return glm::normalize(glm::dquat(1.0, 0.5 * v.x, 0.5 * v.y, 0.5 * v.z));
-  return glm::angleAxis(angle, v / angle);
-}
-
 // Per-axis extremes of the rotation vectors of `qs` about `center` (log(center^-1 q)).
 void rangeAbout(const glm::dquat& center, std::span<const glm::dquat> qs, glm::dvec3& lo,
                 glm::dvec3& hi) {
@@ -60,7 +42,7 @@ void rangeAbout(const glm::dquat& center, std::span<const glm::dquat> qs, glm::d
   hi = glm::dvec3(-std::numeric_limits<double>::max());
   const glm::dquat inverse = glm::inverse(center);
   for (const glm::dquat& q : qs) {
-    const glm::dvec3 v = rotationVector(inverse * q);
+    const glm::dvec3 v = shortRotationVector(glm::normalize(inverse * q));
     lo = glm::min(lo, v);
     hi = glm::max(hi, v);
   }
@@ -375,7 +357,7 @@ glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double an
 }
 
 glm::dvec3 ballRangeCoordinates(const Link& link, const glm::dquat& q) {
-  return rotationVector(glm::inverse(link.ball_center) * q);
+  return shortRotationVector(glm::normalize(glm::inverse(link.ball_center) * q));
 }
 
 glm::dquat clampToBallRange(const Link& link, const glm::dquat& q) {
@@ -620,6 +602,349 @@ Status assignMasses(BodyPlan& plan, const motion::MassDistribution& masses,
   return {};
 }
 
+// The first pose's bounding size of the joints from the base down (joints above it, a root at the
+// origin, do not count) and their End Sites: the body's size in metres.
+double bodySize(const motion::Skeleton& skeleton, const std::vector<glm::dmat4>& world, int base) {
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (int j = base; j < skeleton.jointCount(); ++j) {
+    const glm::dvec3 p(world[j][3]);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    if (skeleton.end_sites[j]) {
+      const glm::dvec3 e = transformPoint(world[j], *skeleton.end_sites[j]);
+      lo = glm::min(lo, e);
+      hi = glm::max(hi, e);
+    }
+  }
+  const glm::dvec3 extent = hi - lo;
+  return std::max({extent.x, extent.y, extent.z});
+}
+
+// What buildBodyPlan's stages share: the skeleton's first pose and what was found in it.
+struct FirstPose {
+  const motion::Skeleton& skeleton;
+  const std::vector<glm::dmat4>& world;  // (joints) joint to world at the first frame
+  const motion::MassDistribution& masses;
+  const std::vector<char>& is_foot;               // (joints)
+  const std::vector<std::vector<int>>& children;  // (joints)
+  int base = 0;                                   // the base link's joint
+};
+
+// Merging, parents first: whole subtrees by name (fingers, hands), single joints by length.
+// (joints) 1 where the joint merges into its parent's link.
+std::vector<char> mergedJoints(const FirstPose& pose, const BodyPlanSettings& settings,
+                               double size_m) {
+  const motion::Skeleton& skeleton = pose.skeleton;
+  const int n = skeleton.jointCount();
+  const int base = pose.base;
+  const double min_length = settings.min_segment_length_m * (size_m / settings.reference_size_m);
+  std::vector<char> merged(n, 0), subtree_merged(n, 0);
+  for (int j = base + 1; j < n; ++j) {
+    const int p = skeleton.parents[j];
+    if (p < base) continue;  // cannot happen for a single-child base chain
+    const bool keep = nameHasAny(skeleton.names[j], settings.keep_names);
+    if (pose.is_foot[j] || keep) continue;
+    bool m = subtree_merged[p] != 0;
+    if (!m && (nameHasAny(skeleton.names[j], settings.merge_names) ||
+               pose.masses.segments[j] == motion::Segment::kHand)) {
+      subtree_merged[j] = 1;
+      m = true;
+    }
+    if (subtree_merged[p]) subtree_merged[j] = 1;
+    if (!m && glm::length(skeleton.offsets[j]) < min_length) m = true;
+    if (!m && pose.children[j].empty()) {
+      const double leaf = skeleton.end_sites[j] ? glm::length(*skeleton.end_sites[j]) : 0.0;
+      if (leaf < min_length) m = true;
+    }
+    if (!m && settings.merge_short_trunk &&
+        (pose.masses.segments[j] == motion::Segment::kTrunk ||
+         pose.masses.segments[j] == motion::Segment::kHead)) {
+      // Distance from the pivot of the link the parent belongs to, at the first pose.
+      int owner = p;
+      while (owner > base && merged[owner]) owner = skeleton.parents[owner];
+      const double distance =
+          glm::length(glm::dvec3(pose.world[j][3]) - glm::dvec3(pose.world[owner][3]));
+      const double diameter = 2.0 * segmentRadius(settings, pose.masses.segments[owner]) * size_m;
+      if (distance < diameter) m = true;
+    }
+    merged[j] = m ? 1 : 0;
+  }
+  return merged;
+}
+
+// Links in joint order (parents first): the base, then every joint not merged, each with the
+// chain of joints from its parent link's joint down to its own.
+void makeLinks(const FirstPose& pose, const std::vector<char>& merged, BodyPlan& plan) {
+  const motion::Skeleton& skeleton = pose.skeleton;
+  const int n = skeleton.jointCount();
+  plan.link_of_joint.assign(n, 0);
+  Link b;
+  b.name = skeleton.names[pose.base];
+  b.joint = pose.base;
+  b.parent = -1;
+  b.type = JointType::kBase;
+  b.segment = pose.masses.segments[pose.base];
+  plan.links.push_back(b);
+  for (int j = pose.base + 1; j < n; ++j) {
+    if (merged[j]) {
+      plan.link_of_joint[j] = plan.link_of_joint[skeleton.parents[j]];
+      continue;
+    }
+    Link link;
+    link.name = skeleton.names[j];
+    link.joint = j;
+    link.segment = pose.masses.segments[j];
+    link.foot = pose.is_foot[j] != 0;
+    int a = skeleton.parents[j];
+    link.chain.push_back(j);
+    while (a != plan.links[plan.link_of_joint[a]].joint) {
+      link.chain.insert(link.chain.begin(), a);
+      a = skeleton.parents[a];
+    }
+    link.parent = plan.link_of_joint[a];
+    plan.link_of_joint[j] = static_cast<int>(plan.links.size());
+    plan.links.push_back(std::move(link));
+  }
+}
+
+// Left-to-right direction for hinge axes without a clip: from the feet's sides, else X.
+glm::dvec3 lateralDirection(const std::vector<motion::Foot>& feet,
+                            const std::vector<glm::dmat4>& world) {
+  glm::dvec3 lateral_world(1.0, 0.0, 0.0);
+  glm::dvec3 left(0.0), right(0.0);
+  int nl = 0, nr = 0;
+  for (const motion::Foot& f : feet) {
+    const glm::dvec3 p(world[f.joint][3]);
+    if (f.side == motion::Side::kLeft) left += p, ++nl;
+    if (f.side == motion::Side::kRight) right += p, ++nr;
+  }
+  if (nl > 0 && nr > 0) {
+    glm::dvec3 d = left / double(nl) - right / double(nr);
+    d.y = 0.0;
+    if (glm::length(d) > 1e-6) lateral_world = glm::normalize(d);
+  }
+  return lateral_world;
+}
+
+// The link's pivot and zero rotation: its chain's offsets, the joints above its own frozen at
+// the first pose, its own at rest.
+void setPivot(const motion::Skeleton& skeleton, const BodyPlan& plan, Link& link) {
+  glm::dmat4 t(1.0);
+  for (size_t k = 0; k < link.chain.size(); ++k) {
+    const int a = link.chain[k];
+    const bool last = k + 1 == link.chain.size();
+    const glm::dquat r = last ? skeleton.rest_rotations[a] : plan.frozen_rotations[a];
+    t = t * glm::translate(glm::dmat4(1.0), skeleton.offsets[a]) * glm::mat4_cast(r);
+  }
+  link.pivot = glm::dvec3(t[3]);
+  link.zero_rotation = glm::normalize(glm::quat_cast(glm::dmat3(t)));
+}
+
+// The link's observed coordinates over the clip, q_f = zero^-1 * (product of the chain's local
+// rotations at frame f), kept in one hemisphere frame to frame.
+struct ObservedRotations {
+  std::vector<glm::dquat> qs;   // (frames)
+  double max_from_first = 0.0;  // largest angle from the first frame's, radians
+  glm::dmat3 moment{0.0};       // sum of the rotation vectors' outer products
+};
+
+ObservedRotations observedRotations(const Link& link, const motion::Clip& clip) {
+  const glm::dquat zero_inv = glm::inverse(link.zero_rotation);
+  ObservedRotations out;
+  out.qs.resize(clip.frame_count);
+  glm::dquat previous = kIdentity;
+  for (int f = 0; f < clip.frame_count; ++f) {
+    glm::dquat rel = kIdentity;
+    for (int a : link.chain) rel = rel * clip.rotation(f, a);
+    glm::dquat q = glm::normalize(zero_inv * rel);
+    if (glm::dot(q, previous) < 0.0) q = -q;
+    previous = q;
+    out.qs[f] = q;
+    out.max_from_first = std::max(out.max_from_first, angleBetween(out.qs[0], q));
+    const glm::dvec3 v = shortRotationVector(glm::normalize(q));
+    out.moment += glm::outerProduct(v, v);
+  }
+  return out;
+}
+
+// The ball range: what the clip does and the standing pose (the rest pose, where a run from
+// standing starts and what the standing tests hold; a T-pose's arms lie outside a walk's). About
+// the middle of those poses rather than the zero pose: the rotation vectors stay short there (the
+// log map folds at pi), and the bounds are the observed extremes.
+void setBallRange(const motion::Skeleton& skeleton, const std::vector<glm::dquat>& qs,
+                  const BodyPlanSettings& settings, Link& link) {
+  glm::dquat rest_rel = kIdentity;
+  for (int a : link.chain) rest_rel = rest_rel * skeleton.rest_rotations[a];
+  std::vector<glm::dquat> poses = qs;
+  poses.push_back(glm::normalize(glm::inverse(link.zero_rotation) * rest_rel));
+  glm::dquat center = kIdentity;
+  glm::dvec3 vlo, vhi;
+  for (int pass = 0; pass < 3; ++pass) {  // the middle moves the extremes: settle it
+    rangeAbout(center, poses, vlo, vhi);
+    center = glm::normalize(center * fromRotationVector(0.5 * (vlo + vhi)));
+  }
+  rangeAbout(center, poses, vlo, vhi);
+  link.ball_center = positiveW(center);
+  link.ball_lower = vlo - settings.limit_margin_rad;
+  link.ball_upper = vhi + settings.limit_margin_rad;
+}
+
+// A hinge candidate becomes a hinge when one axis carries most of its observed rotation, with the
+// observed range; otherwise it stays a ball and a note says why.
+void hingeIfDominant(const ObservedRotations& observed, const glm::dvec3& lateral_link,
+                     const BodyPlanSettings& settings, Link& link,
+                     std::vector<std::string>& notes) {
+  glm::dvec3 axis;
+  double share = 0.0;
+  principalAxis(observed.moment, axis, share);
+  if (share < settings.hinge_dominance) {
+    std::ostringstream note;
+    note.precision(2);
+    note << link.name << ": ball joint, not a hinge (main axis carries " << share
+         << " of the observed rotation, below " << settings.hinge_dominance << ")";
+    notes.push_back(note.str());
+    return;
+  }
+  if (glm::dot(axis, lateral_link) < 0.0) axis = -axis;
+  link.type = JointType::kHinge;
+  link.hinge_axis = glm::normalize(axis);
+  double alo = std::numbers::pi, ahi = -std::numbers::pi;
+  for (const glm::dquat& q : observed.qs) {
+    const double angle = hingeAngle(q, link.hinge_axis);
+    alo = std::min(alo, angle);
+    ahi = std::max(ahi, angle);
+  }
+  link.hinge_lower = std::max(-std::numbers::pi, alo - settings.limit_margin_rad);
+  link.hinge_upper = std::min(std::numbers::pi, ahi + settings.limit_margin_rad);
+}
+
+// Joint type and limits of link li: without a clip by its segment (a shank or forearm hinges
+// about the lateral axis); with one, fixed when it hardly moves, else a ball over the observed
+// range or a hinge when one axis dominates.
+void setJointType(const FirstPose& pose, const motion::Clip* observed_motion,
+                  const glm::dvec3& lateral_world, const BodyPlanSettings& settings, Link& link,
+                  std::vector<std::string>& notes) {
+  const bool hinge_candidate = link.segment == motion::Segment::kShank ||
+                               link.segment == motion::Segment::kForearm ||
+                               nameHasAny(link.name, settings.hinge_names);
+  const glm::dvec3 lateral_link = glm::normalize(
+      glm::inverse(glm::quat_cast(glm::dmat3(pose.world[link.joint]))) * lateral_world);
+  if (observed_motion == nullptr) {
+    link.type = hinge_candidate ? JointType::kHinge : JointType::kBall;
+    link.hinge_axis = lateral_link;
+    return;
+  }
+  const ObservedRotations observed = observedRotations(link, *observed_motion);
+  if (observed.max_from_first < settings.fixed_range_rad) {
+    link.type = JointType::kFixed;
+    link.zero_rotation = glm::normalize(link.zero_rotation * observed.qs[0]);
+    return;
+  }
+  setBallRange(pose.skeleton, observed.qs, settings, link);
+  link.type = JointType::kBall;
+  if (hinge_candidate) hingeIfDominant(observed, lateral_link, settings, link, notes);
+}
+
+// The soles fitted to the clip's own feet, where it stands flat: per foot link in link order, its
+// points in its own frame at the first pose, whether no End Site gives its toes a length, and the
+// fit (not ok without a clip, or where the clip never stands the foot flat).
+struct FootSoles {
+  std::vector<std::vector<glm::dvec3>> points;  // (feet) in the foot link's frame
+  std::vector<char> bare_tip;                   // (feet) no End Site gives the toes a length
+  std::vector<SoleFit> fits;                    // (feet)
+};
+
+FootSoles fitFootSoles(const FirstPose& pose, const BodyPlan& plan,
+                       const motion::Clip* observed_motion, std::span<const int> foot_joints) {
+  const motion::Skeleton& skeleton = pose.skeleton;
+  FootSoles soles;
+  for (int li = 0; li < static_cast<int>(plan.links.size()); ++li) {
+    const Link& link = plan.links[static_cast<size_t>(li)];
+    if (!link.foot) continue;
+    const glm::dmat4 to_link = glm::inverse(pose.world[link.joint]);
+    std::vector<glm::dvec3> points = linkPoints(skeleton, plan, li, pose.world);
+    for (glm::dvec3& p : points) p = transformPoint(to_link, p);
+    bool bare = true;
+    for (int j = link.joint; j < skeleton.jointCount(); ++j)
+      if (plan.link_of_joint[j] == li && skeleton.end_sites[j])
+        bare = bare && glm::length(*skeleton.end_sites[j]) < 1e-6;
+    soles.points.push_back(std::move(points));
+    soles.bare_tip.push_back(bare ? 1 : 0);
+  }
+  soles.fits = observed_motion != nullptr
+                   ? fitSoles(skeleton, *observed_motion, foot_joints, soles.points)
+                   : std::vector<SoleFit>(foot_joints.size());
+  return soles;
+}
+
+// A link's shape that is not a foot, from the points it holds (`points_world`) in its own frame:
+// a sphere for none, a padded box for the trunk, else a capsule (or a sphere when short) from
+// the pivot to the points' centroid.
+Shape limbShape(const Link& link, bool is_base, const glm::dmat4& to_link,
+                const std::vector<glm::dvec3>& points_world, double radius) {
+  Shape shape;
+  shape.radius = radius;
+  if (points_world.empty()) {
+    shape.type = ShapeType::kSphere;
+  } else if (points_world.size() >= 2 && (link.segment == motion::Segment::kTrunk || is_base)) {
+    // A trunk link spans its points (hips, spine, shoulders, neck): a box around them padded
+    // by the trunk radius. A sphere at their centroid would make a light, tiny-inertia torso
+    // that explicit PD cannot hold stiffly against the legs.
+    glm::dvec3 plo(0.0), phi(0.0);
+    for (const glm::dvec3& p : points_world) {
+      const glm::dvec3 q = transformPoint(to_link, p);
+      plo = glm::min(plo, q);
+      phi = glm::max(phi, q);
+    }
+    shape.type = ShapeType::kBox;
+    shape.center = 0.5 * (plo + phi);
+    shape.half_extents = 0.5 * (phi - plo) + glm::dvec3(radius);
+  } else {
+    glm::dvec3 end(0.0);
+    for (const glm::dvec3& p : points_world) end += transformPoint(to_link, p);
+    end /= double(points_world.size());
+    const double length = glm::length(end);
+    shape.center = 0.5 * end;
+    if (length <= 2.0 * radius) {
+      shape.type = ShapeType::kSphere;
+    } else {
+      shape.type = ShapeType::kCapsule;
+      shape.half_length = 0.5 * length - radius;
+      shape.rotation = rotationFromY(end / length);
+    }
+  }
+  return shape;
+}
+
+// Shapes from the points each link holds, in its own frame at the first pose: feet get a sole
+// box (fitted to the clip, else measured at rest), the others limbShape.
+void assignShapes(const FirstPose& pose, const motion::Clip* observed_motion,
+                  std::span<const int> foot_joints, const glm::dvec3& lateral_world,
+                  const BodyPlanSettings& settings, BodyPlan& plan) {
+  const motion::Skeleton& skeleton = pose.skeleton;
+  glm::dquat upright;
+  const std::vector<glm::dmat4> rest_up = uprightRest(skeleton, foot_joints, upright);
+  const FootSoles soles = fitFootSoles(pose, plan, observed_motion, foot_joints);
+  size_t foot_index = 0;
+  for (int li = 0; li < static_cast<int>(plan.links.size()); ++li) {
+    Link& link = plan.links[static_cast<size_t>(li)];
+    const double radius = segmentRadius(settings, link.segment) * plan.size_m;
+    Shape shape;
+    if (link.foot && soles.fits[foot_index].ok) {
+      shape = soleBox(soles.fits[foot_index], soles.points[foot_index],
+                      soles.bare_tip[foot_index] != 0, radius);
+    } else if (link.foot) {
+      shape = restSoleBox(skeleton, plan, li, rest_up, lateral_world, radius);
+    } else {
+      shape = limbShape(link, li == 0, glm::inverse(pose.world[link.joint]),
+                        linkPoints(skeleton, plan, li, pose.world), radius);
+    }
+    if (link.foot) ++foot_index;
+    link.shape = shape;
+    link.com = shape.center;
+  }
+}
+
 }  // namespace
 
 Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
@@ -653,303 +978,45 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
       motion::massDistribution(skeleton, feet, settings.mass_table);
   std::vector<char> is_foot(n, 0);
   for (const motion::Foot& f : feet) is_foot[f.joint] = 1;
-
   std::vector<std::vector<int>> children(n);
   for (int j = 1; j < n; ++j) children[skeleton.parents[j]].push_back(j);
+  FirstPose pose{skeleton, world, masses, is_foot, children};
 
   // The base: skip a massless root chain (a root at the origin above the pelvis).
-  int base = 0;
   plan.base_chain.push_back(0);
-  while (masses.segments[base] == motion::Segment::kNone && children[base].size() == 1) {
-    base = children[base][0];
-    plan.base_chain.push_back(base);
+  while (masses.segments[pose.base] == motion::Segment::kNone && children[pose.base].size() == 1) {
+    pose.base = children[pose.base][0];
+    plan.base_chain.push_back(pose.base);
   }
-
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (int j = base; j < n; ++j) {  // joints above the base (a root at the origin) do not count
-    const glm::dvec3 p(world[j][3]);
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-    if (skeleton.end_sites[j]) {
-      const glm::dvec3 e = transformPoint(world[j], *skeleton.end_sites[j]);
-      lo = glm::min(lo, e);
-      hi = glm::max(hi, e);
-    }
-  }
-  const glm::dvec3 extent = hi - lo;
-  plan.size_m = std::max({extent.x, extent.y, extent.z});
+  plan.size_m = bodySize(skeleton, world, pose.base);
   if (!(plan.size_m > 1e-6)) return Status::error("skeleton: all joints at one point; no size");
-  const double scale = plan.size_m / settings.reference_size_m;
-  const double min_length = settings.min_segment_length_m * scale;
 
-  // Merging, parents first: whole subtrees by name (fingers, hands), single joints by length.
-  std::vector<char> merged(n, 0), subtree_merged(n, 0);
-  int merged_count = 0;
-  for (int j = base + 1; j < n; ++j) {
-    const int p = skeleton.parents[j];
-    if (p < base) continue;  // cannot happen for a single-child base chain
-    const bool keep = nameHasAny(skeleton.names[j], settings.keep_names);
-    if (is_foot[j] || keep) continue;
-    bool m = subtree_merged[p] != 0;
-    if (!m && (nameHasAny(skeleton.names[j], settings.merge_names) ||
-               masses.segments[j] == motion::Segment::kHand)) {
-      subtree_merged[j] = 1;
-      m = true;
-    }
-    if (subtree_merged[p]) subtree_merged[j] = 1;
-    if (!m && glm::length(skeleton.offsets[j]) < min_length) m = true;
-    if (!m && children[j].empty()) {
-      const double leaf = skeleton.end_sites[j] ? glm::length(*skeleton.end_sites[j]) : 0.0;
-      if (leaf < min_length) m = true;
-    }
-    if (!m && settings.merge_short_trunk &&
-        (masses.segments[j] == motion::Segment::kTrunk ||
-         masses.segments[j] == motion::Segment::kHead)) {
-      // Distance from the pivot of the link the parent belongs to, at the first pose.
-      int owner = p;
-      while (owner > base && merged[owner]) owner = skeleton.parents[owner];
-      const double distance = glm::length(glm::dvec3(world[j][3]) - glm::dvec3(world[owner][3]));
-      const double diameter = 2.0 * segmentRadius(settings, masses.segments[owner]) * plan.size_m;
-      if (distance < diameter) m = true;
-    }
-    merged[j] = m ? 1 : 0;
-    merged_count += m ? 1 : 0;
-  }
-  if (merged_count > 0)
-    plan.notes.push_back(std::to_string(merged_count) + " joints merged into their parents");
-
-  // Links in joint order (parents first).
-  plan.link_of_joint.assign(n, 0);
-  {
-    Link b;
-    b.name = skeleton.names[base];
-    b.joint = base;
-    b.parent = -1;
-    b.type = JointType::kBase;
-    b.segment = masses.segments[base];
-    plan.links.push_back(b);
-  }
-  for (int j = base + 1; j < n; ++j) {
-    if (merged[j]) {
-      plan.link_of_joint[j] = plan.link_of_joint[skeleton.parents[j]];
-      continue;
-    }
-    Link link;
-    link.name = skeleton.names[j];
-    link.joint = j;
-    link.segment = masses.segments[j];
-    link.foot = is_foot[j] != 0;
-    int a = skeleton.parents[j];
-    link.chain.push_back(j);
-    while (a != plan.links[plan.link_of_joint[a]].joint) {
-      link.chain.insert(link.chain.begin(), a);
-      a = skeleton.parents[a];
-    }
-    link.parent = plan.link_of_joint[a];
-    plan.link_of_joint[j] = static_cast<int>(plan.links.size());
-    plan.links.push_back(std::move(link));
-  }
-  const int link_count = static_cast<int>(plan.links.size());
-
-  // Left-to-right direction for hinge axes without a clip: from the feet's sides, else X.
-  glm::dvec3 lateral_world(1.0, 0.0, 0.0);
-  {
-    glm::dvec3 left(0.0), right(0.0);
-    int nl = 0, nr = 0;
-    for (const motion::Foot& f : feet) {
-      const glm::dvec3 p(world[f.joint][3]);
-      if (f.side == motion::Side::kLeft) left += p, ++nl;
-      if (f.side == motion::Side::kRight) right += p, ++nr;
-    }
-    if (nl > 0 && nr > 0) {
-      glm::dvec3 d = left / double(nl) - right / double(nr);
-      d.y = 0.0;
-      if (glm::length(d) > 1e-6) lateral_world = glm::normalize(d);
-    }
-  }
+  const std::vector<char> merged = mergedJoints(pose, settings, plan.size_m);
+  if (const long count = std::count(merged.begin(), merged.end(), 1); count > 0)
+    plan.notes.push_back(std::to_string(count) + " joints merged into their parents");
+  makeLinks(pose, merged, plan);
 
   // Pivots, zero rotations, joint types and limits.
-  for (int li = 1; li < link_count; ++li) {
-    Link& link = plan.links[li];
-    glm::dmat4 t(1.0);
-    for (size_t k = 0; k < link.chain.size(); ++k) {
-      const int a = link.chain[k];
-      const bool last = k + 1 == link.chain.size();
-      const glm::dquat r = last ? skeleton.rest_rotations[a] : plan.frozen_rotations[a];
-      t = t * glm::translate(glm::dmat4(1.0), skeleton.offsets[a]) * glm::mat4_cast(r);
-    }
-    link.pivot = glm::dvec3(t[3]);
-    link.zero_rotation = glm::normalize(glm::quat_cast(glm::dmat3(t)));
-
-    const bool hinge_candidate = link.segment == motion::Segment::kShank ||
-                                 link.segment == motion::Segment::kForearm ||
-                                 nameHasAny(link.name, settings.hinge_names);
-    const glm::dvec3 lateral_link =
-        glm::normalize(glm::inverse(glm::quat_cast(glm::dmat3(world[link.joint]))) * lateral_world);
-    if (observed_motion == nullptr) {
-      link.type = hinge_candidate ? JointType::kHinge : JointType::kBall;
-      link.hinge_axis = lateral_link;
-      continue;
-    }
-    // Observed coordinates: q_f = zero^-1 * (product of the chain's local rotations at frame f).
-    const glm::dquat zero_inv = glm::inverse(link.zero_rotation);
-    std::vector<glm::dquat> qs(clip.frame_count);
-    glm::dquat previous = kIdentity;
-    double max_from_first = 0.0;
-    glm::dmat3 moment(0.0);
-    for (int f = 0; f < clip.frame_count; ++f) {
-      glm::dquat rel = kIdentity;
-      for (int a : link.chain) rel = rel * clip.rotation(f, a);
-      glm::dquat q = glm::normalize(zero_inv * rel);
-      if (glm::dot(q, previous) < 0.0) q = -q;
-      previous = q;
-      qs[f] = q;
-      const double d = std::abs(glm::dot(q, qs[0]));
-      max_from_first = std::max(max_from_first, 2.0 * std::acos(std::min(1.0, d)));
-      const glm::dvec3 v = rotationVector(q);
-      moment += glm::outerProduct(v, v);
-    }
-    if (max_from_first < settings.fixed_range_rad) {
-      link.type = JointType::kFixed;
-      link.zero_rotation = glm::normalize(link.zero_rotation * qs[0]);
-      continue;
-    }
-    // The ball range: what the clip does and the standing pose (the rest pose, where a run
-    // from standing starts and what the standing tests hold; a T-pose's arms lie outside a
-    // walk's). About the middle of those poses rather than the zero pose: the rotation vectors
-    // stay short there (the log map folds at pi), and the bounds are the observed extremes.
-    {
-      glm::dquat rest_rel = kIdentity;
-      for (int a : link.chain) rest_rel = rest_rel * skeleton.rest_rotations[a];
-      std::vector<glm::dquat> poses = qs;
-      poses.push_back(glm::normalize(zero_inv * rest_rel));
-      glm::dquat center = kIdentity;
-      glm::dvec3 vlo, vhi;
-      for (int pass = 0; pass < 3; ++pass) {  // the middle moves the extremes: settle it
-        rangeAbout(center, poses, vlo, vhi);
-        center = glm::normalize(center * fromRotationVector(0.5 * (vlo + vhi)));
-      }
-      rangeAbout(center, poses, vlo, vhi);
-      link.ball_center = positiveW(center);
-      link.ball_lower = vlo - settings.limit_margin_rad;
-      link.ball_upper = vhi + settings.limit_margin_rad;
-    }
-    link.type = JointType::kBall;
-    if (hinge_candidate) {
-      glm::dvec3 axis;
-      double share = 0.0;
-      principalAxis(moment, axis, share);
-      if (share >= settings.hinge_dominance) {
-        if (glm::dot(axis, lateral_link) < 0.0) axis = -axis;
-        link.type = JointType::kHinge;
-        link.hinge_axis = glm::normalize(axis);
-        double alo = std::numbers::pi, ahi = -std::numbers::pi;
-        for (const glm::dquat& q : qs) {
-          const double angle = hingeAngle(q, link.hinge_axis);
-          alo = std::min(alo, angle);
-          ahi = std::max(ahi, angle);
-        }
-        link.hinge_lower = std::max(-std::numbers::pi, alo - settings.limit_margin_rad);
-        link.hinge_upper = std::min(std::numbers::pi, ahi + settings.limit_margin_rad);
-      } else {
-        std::ostringstream note;
-        note.precision(2);
-        note << link.name << ": ball joint, not a hinge (main axis carries " << share
-             << " of the observed rotation, below " << settings.hinge_dominance << ")";
-        plan.notes.push_back(note.str());
-      }
-    }
+  const glm::dvec3 lateral_world = lateralDirection(feet, world);
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    setPivot(skeleton, plan, plan.links[li]);
+    setJointType(pose, observed_motion, lateral_world, settings, plan.links[li], plan.notes);
   }
 
-  // Shapes from the points each link holds, in its own frame at the first pose.
   std::vector<int> foot_joints;
   for (const Link& link : plan.links)
     if (link.foot) foot_joints.push_back(link.joint);
-  glm::dquat upright;
-  const std::vector<glm::dmat4> rest_up = uprightRest(skeleton, foot_joints, upright);
   if (observed_motion != nullptr && !restPoseStands(skeleton, foot_joints)) {
     plan.standing_rotations = meanPose(clip);
-    plan.notes.push_back("the rest pose does not stand (feet not below the pelvis); standing is "
-                         "the clip's mean pose");
+    plan.notes.push_back(
+        "the rest pose does not stand (feet not below the pelvis); standing is "
+        "the clip's mean pose");
   }
-  // Soles from the clip's own feet (where it stands flat), when there is a clip.
-  std::vector<std::vector<glm::dvec3>> foot_points;  // (feet) in the foot link's frame
-  std::vector<char> bare_tip;                         // (feet) no End Site gives the toes a length
-  for (const Link& link : plan.links) {
-    if (!link.foot) continue;
-    const int li = plan.link_of_joint[link.joint];
-    const glm::dmat4 to_link = glm::inverse(world[link.joint]);
-    std::vector<glm::dvec3> points;
-    bool bare = true;
-    for (int j = link.joint; j < n; ++j) {
-      const int owner = plan.link_of_joint[j];
-      const bool child_pivot =
-          owner != li && plan.links[owner].joint == j && plan.links[owner].parent == li;
-      if ((owner == li && j != link.joint) || child_pivot)
-        points.push_back(transformPoint(to_link, glm::dvec3(world[j][3])));
-      if (owner == li && skeleton.end_sites[j]) {
-        points.push_back(transformPoint(to_link, transformPoint(world[j], *skeleton.end_sites[j])));
-        bare = bare && glm::length(*skeleton.end_sites[j]) < 1e-6;
-      }
-    }
-    foot_points.push_back(std::move(points));
-    bare_tip.push_back(bare ? 1 : 0);
-  }
-  const std::vector<SoleFit> soles =
-      observed_motion != nullptr
-          ? fitSoles(skeleton, clip, foot_joints, foot_points)
-          : std::vector<SoleFit>(foot_joints.size());
-  int foot_index = -1;
-  for (int li = 0; li < link_count; ++li) {
-    Link& link = plan.links[li];
-    const glm::dmat4 to_link = glm::inverse(world[link.joint]);
-    const std::vector<glm::dvec3> points_world = linkPoints(skeleton, plan, li, world);
-    const double radius = segmentRadius(settings, link.segment) * plan.size_m;
-    Shape shape;
-    shape.radius = radius;
-    if (link.foot) ++foot_index;
-    if (link.foot && soles[static_cast<size_t>(foot_index)].ok) {
-      shape = soleBox(soles[static_cast<size_t>(foot_index)], foot_points[static_cast<size_t>(foot_index)],
-                      bare_tip[static_cast<size_t>(foot_index)] != 0, radius);
-    } else if (link.foot) {
-      shape = restSoleBox(skeleton, plan, li, rest_up, lateral_world, radius);
-    } else if (points_world.empty()) {
-      shape.type = ShapeType::kSphere;
-    } else if (points_world.size() >= 2 && (link.segment == motion::Segment::kTrunk || li == 0)) {
-      // A trunk link spans its points (hips, spine, shoulders, neck): a box around them padded
-      // by the trunk radius. A sphere at their centroid would make a light, tiny-inertia torso
-      // that explicit PD cannot hold stiffly against the legs.
-      glm::dvec3 plo(0.0), phi(0.0);
-      for (const glm::dvec3& p : points_world) {
-        const glm::dvec3 q = transformPoint(to_link, p);
-        plo = glm::min(plo, q);
-        phi = glm::max(phi, q);
-      }
-      shape.type = ShapeType::kBox;
-      shape.center = 0.5 * (plo + phi);
-      shape.half_extents = 0.5 * (phi - plo) + glm::dvec3(radius);
-    } else {
-      glm::dvec3 end(0.0);
-      for (const glm::dvec3& p : points_world) end += transformPoint(to_link, p);
-      end /= double(points_world.size());
-      const double length = glm::length(end);
-      shape.center = 0.5 * end;
-      if (length <= 2.0 * radius) {
-        shape.type = ShapeType::kSphere;
-      } else {
-        shape.type = ShapeType::kCapsule;
-        shape.half_length = 0.5 * length - radius;
-        shape.rotation = rotationFromY(end / length);
-      }
-    }
-    link.shape = shape;
-    link.com = shape.center;
-  }
-
+  assignShapes(pose, observed_motion, foot_joints, lateral_world, settings, plan);
   if (Status s = assignMasses(plan, masses, feet, settings); !s.ok()) return s;
 
   // Which links carry the body: their subtree holds a foot.
-  for (int li = link_count - 1; li >= 0; --li) {
+  for (int li = static_cast<int>(plan.links.size()) - 1; li >= 0; --li) {
     Link& link = plan.links[li];
     link.supports = link.supports || link.foot;
     if (link.parent >= 0 && link.supports) plan.links[link.parent].supports = true;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "sinew/core/rotation.h"
 #include "sinew/physics/world.h"
 
 namespace sinew::physics {
@@ -75,13 +76,8 @@ std::vector<DofGains> gainsFor(const std::vector<double>& kp_nominal,
 
 }  // namespace
 
-glm::dvec3 rotationVectorOf(const glm::dquat& q_in) {
-  glm::dquat q = glm::normalize(q_in);
-  if (q.w < 0.0) q = -q;
-  const glm::dvec3 v(q.x, q.y, q.z);
-  const double s = glm::length(v);
-  if (s < 1e-12) return 2.0 * v;
-  return v * (2.0 * std::atan2(s, q.w) / s);
+glm::dvec3 rotationVectorOf(const glm::dquat& q) {
+  return shortRotationVector(glm::normalize(q));
 }
 
 Status ControllerSettings::validate() const {
@@ -190,8 +186,8 @@ void PdController::computeTorques(const World& world, const LinkPose& target,
   for (size_t li = 1; li < n; ++li) {
     const size_t o = static_cast<size_t>(offsets_[li]);
     if (types_[li] == JointType::kBall) {
-      const glm::dvec3 error =
-          rotationVectorOf(glm::inverse(current.rotations[li]) * target.rotations[li]);
+      const glm::dvec3 error = shortRotationVector(
+          glm::normalize(glm::inverse(current.rotations[li]) * target.rotations[li]));
       glm::dvec3 tau;
       for (int d = 0; d < 3; ++d) {
         const DofGains& g = gains[o + static_cast<size_t>(d)];

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "sinew/core/rotation.h"
 #include "sinew/physics/controller.h"
 #include "sinew/physics/divergence.h"
 
@@ -92,14 +93,13 @@ void skeletonPoseFromWorld(const World& world, const motion::Skeleton& skeleton,
   }
 }
 
-Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& skeleton,
-                                  const spectral::TargetMotion& target,
-                                  const SimulationSettings& settings) {
-  if (Status s = settings.validate(); !s.ok()) return Status::error("simulation: " + s.message());
-  if (Status s = target.validate(skeleton); !s.ok())
-    return Status::error("target motion: " + s.message());
-  std::vector<int> push_links;
-  for (const Push& p : settings.pushes) {
+namespace {
+
+// The link each push lands on: the named joint's own body, else the base.
+Result<std::vector<int>> pushLinks(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                   const std::vector<Push>& pushes) {
+  std::vector<int> links;
+  for (const Push& p : pushes) {
     int link = 0;
     if (!p.link.empty()) {
       const int joint = skeleton.findJoint(p.link);
@@ -107,26 +107,170 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
         return Status::error("push: no link named \"" + p.link + "\" (a joint of the skeleton with a body of its own)");
       link = plan.link_of_joint[static_cast<size_t>(joint)];
     }
-    push_links.push_back(link);
+    links.push_back(link);
   }
+  return links;
+}
 
-  const LinkPose standing = standingPose(plan, skeleton);
-  const MotionState state = targetState(plan, skeleton, target, 0.0);
+// The world, started in the motion's first pose and velocities (or standing), and the
+// controller that tracks `target` in it.
+struct Character {
+  std::unique_ptr<World> world;
+  std::unique_ptr<TrackingController> controller;
+};
+
+Result<Character> makeCharacter(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                const spectral::TargetMotion& target,
+                                const SimulationSettings& settings, const MotionState& state,
+                                const LinkPose& standing) {
   Result<std::unique_ptr<World>> created =
       World::create(plan, settings.start_moving ? state.pose : standing, settings.world);
   if (!created.ok()) return created.status();
-  World& world = *created.value();
+  Character character;
+  character.world = std::move(created).value();
   TrackingSettings tracking = settings.tracking;
   if (settings.start_moving) {
-    if (Status s = world.setVelocities(state.base_linear, state.base_angular, state.joint_velocities);
+    if (Status s = character.world->setVelocities(state.base_linear, state.base_angular,
+                                                  state.joint_velocities);
         !s.ok())
       return s;
     tracking.ramp_s = 0.0;
   }
   Result<std::unique_ptr<TrackingController>> made =
-      TrackingController::create(world, skeleton, target, standing, tracking);
+      TrackingController::create(*character.world, skeleton, target, standing, tracking);
   if (!made.ok()) return made.status();
-  TrackingController& controller = *made.value();
+  character.controller = std::move(made).value();
+  return character;
+}
+
+// The run as a clip on the skeleton: the world's pose, the joints merged into links at the
+// target's pose of the same time.
+struct Recorder {
+  const motion::Skeleton& skeleton;
+  const spectral::TargetMotion& target;
+  std::vector<glm::dquat> reference_rotations, rotations;        // (joints)
+  std::vector<glm::dvec3> reference_translations, translations;  // (joints) metres
+
+  Recorder(const motion::Skeleton& s, const spectral::TargetMotion& t)
+      : skeleton(s),
+        target(t),
+        reference_rotations(static_cast<size_t>(s.jointCount())),
+        rotations(static_cast<size_t>(s.jointCount())),
+        reference_translations(static_cast<size_t>(s.jointCount())),
+        translations(static_cast<size_t>(s.jointCount())) {}
+
+  void record(const World& world, SimulationReport& report) {
+    target.pose(world.time(), reference_rotations, reference_translations);
+    skeletonPoseFromWorld(world, skeleton, reference_rotations, reference_translations, rotations,
+                          translations);
+    report.motion.rotations.insert(report.motion.rotations.end(), rotations.begin(),
+                                   rotations.end());
+    report.motion.translations.insert(report.motion.translations.end(), translations.begin(),
+                                      translations.end());
+    ++report.motion.frame_count;
+    report.com.push_back(world.centreOfMass());
+  }
+};
+
+// The pushes due by the coming step, delivered once each; `pushed_ns` sums their magnitudes.
+Status deliverPushes(World& world, const std::vector<Push>& pushes,
+                     const std::vector<int>& push_links, std::vector<char>& pushed,
+                     double& pushed_ns) {
+  for (size_t p = 0; p < pushes.size(); ++p)
+    if (!pushed[p] && world.time() + 0.5 * world.dt() >= pushes[p].time_s) {
+      pushed[p] = 1;
+      if (Status s = world.push(push_links[p], pushes[p].impulse_ns); !s.ok()) return s;
+      pushed_ns += glm::length(pushes[p].impulse_ns);
+    }
+  return {};
+}
+
+// Squared tracking error of `now` against `wanted` over the actuated links, summed into
+// `sum`; `count` counts the terms.
+void addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& wanted,
+                      double& sum, long long& count) {
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const JointType type = plan.links[li].type;
+    if (type == JointType::kBall)
+      sum += std::pow(glm::length(shortRotationVector(
+                          glm::normalize(glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
+                      2.0);
+    else if (type == JointType::kHinge)
+      sum +=
+          std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
+    if (type == JointType::kBall || type == JointType::kHinge) ++count;
+  }
+}
+
+// The step's mechanical work and torque^2 / mass.
+void addEffort(const World& world, std::span<const double> torques,
+               std::span<const double> velocities, SimulationReport& report) {
+  for (size_t d = 0; d < torques.size(); ++d) {
+    report.energy_j += std::abs(torques[d] * velocities[d]) * world.dt();
+    report.torque_sq_per_kg += torques[d] * torques[d] * world.dt() / report.mass_kg;
+  }
+}
+
+// Footfalls: a foot that touches the ground after a step off it; the steps each foot is down.
+void countFootfalls(const World& world, const std::vector<int>& feet,
+                    const std::vector<std::uint8_t>& contacts,
+                    const std::vector<glm::dmat4>& transforms, std::vector<char>& was_down,
+                    SimulationReport& report) {
+  for (size_t f = 0; f < feet.size(); ++f) {
+    const bool down = contacts[static_cast<size_t>(feet[f])] > 0;
+    if (down) report.contact_share[f] += 1.0;
+    if (down && !was_down[f])
+      report.footfalls.push_back({static_cast<int>(f), world.time(),
+                                  glm::dvec3(transforms[static_cast<size_t>(feet[f])][3])});
+    was_down[f] = down ? 1 : 0;
+  }
+}
+
+// A fall, first of: a link that may not touch the ground on it, the pelvis upside down (`up_y`,
+// its up's world y), the centre of mass below a share of its starting height.
+void checkFall(const BodyPlan& plan, const World& world, const std::vector<std::uint8_t>& contacts,
+               const std::vector<char>& may_touch, double up_y, double start_height,
+               double fall_height_ratio, SimulationReport& report) {
+  for (size_t li = 0; li < plan.links.size(); ++li)
+    if (contacts[li] > 0 && !may_touch[li]) {
+      report.fell = true;
+      report.fall_reason = plan.links[li].name + " touched the ground";
+      break;
+    }
+  if (!report.fell && up_y < 0.0) {
+    report.fell = true;
+    report.fall_reason = "turned over (the pelvis upside down)";
+  }
+  const glm::dvec3 com = world.centreOfMass();
+  const double height = com.y - world.groundHeight(com.x, com.z);
+  if (!report.fell && height < fall_height_ratio * start_height) {
+    std::ostringstream reason;
+    reason.precision(3);
+    reason << "centre of mass " << height << " m above the ground (started at " << start_height
+           << " m)";
+    report.fell = true;
+    report.fall_reason = reason.str();
+  }
+  if (report.fell) report.fall_time_s = world.time();
+}
+
+}  // namespace
+
+Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& skeleton,
+                                  const spectral::TargetMotion& target,
+                                  const SimulationSettings& settings) {
+  if (Status s = settings.validate(); !s.ok()) return Status::error("simulation: " + s.message());
+  if (Status s = target.validate(skeleton); !s.ok())
+    return Status::error("target motion: " + s.message());
+  Result<std::vector<int>> push_links = pushLinks(plan, skeleton, settings.pushes);
+  if (!push_links.ok()) return push_links.status();
+
+  const LinkPose standing = standingPose(plan, skeleton);
+  const MotionState state = targetState(plan, skeleton, target, 0.0);
+  Result<Character> made = makeCharacter(plan, skeleton, target, settings, state, standing);
+  if (!made.ok()) return made.status();
+  World& world = *made.value().world;
+  TrackingController& controller = *made.value().controller;
 
   SimulationReport report;
   report.mass_kg = world.totalMass();
@@ -135,29 +279,14 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   report.contact_share.assign(feet.size(), 0.0);
   const std::vector<char> may_touch = groundLinks(plan);
 
-  const size_t n = plan.links.size();
   const size_t dofs = static_cast<size_t>(world.dofCount());
-  const size_t joints = static_cast<size_t>(skeleton.jointCount());
-  const std::vector<int> offsets = plan.dofOffsets();
   std::vector<double> zero(dofs, 0.0), torques(dofs, 0.0), velocities(dofs, 0.0);
-  std::vector<glm::dquat> reference_rotations(joints), rotations(joints);
-  std::vector<glm::dvec3> reference_translations(joints), translations(joints);
-  std::vector<glm::dmat4> transforms(n);
+  std::vector<glm::dmat4> transforms(plan.links.size());
   std::vector<char> was_down(feet.size(), 1);
-
+  Recorder recorder(skeleton, target);
   report.motion.name = target.name + "_simulated";
   report.motion.frame_time = 1.0 / settings.record_fps;
-  report.motion.joint_count = static_cast<int>(joints);
-  auto record = [&] {
-    target.pose(world.time(), reference_rotations, reference_translations);
-    skeletonPoseFromWorld(world, skeleton, reference_rotations, reference_translations, rotations,
-                          translations);
-    report.motion.rotations.insert(report.motion.rotations.end(), rotations.begin(), rotations.end());
-    report.motion.translations.insert(report.motion.translations.end(), translations.begin(),
-                                      translations.end());
-    ++report.motion.frame_count;
-    report.com.push_back(world.centreOfMass());
-  };
+  report.motion.joint_count = skeleton.jointCount();
 
   // Uprightness is the pelvis's up against the world's, "up" being what the motion itself holds
   // up at its start (a rig's pelvis axes are its own: Bandai's local Y lies 92 degrees off).
@@ -173,15 +302,16 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   std::vector<char> pushed(settings.pushes.size(), 0);
   double pushed_ns = 0.0;       // magnitudes of the impulses delivered, N s
   glm::dvec3 last_com = start;  // of the last state that did not diverge
+  // SimulationSettings::reference: the error is measured against it instead of the target.
   std::unique_ptr<FourierTargets> reference;
-  std::vector<glm::dquat> reference_pose(joints);
+  std::vector<glm::dquat> reference_pose(static_cast<size_t>(skeleton.jointCount()));
   LinkPose reference_links;
   if (settings.reference != nullptr) {
     if (Status s = settings.reference->validate(skeleton); !s.ok())
       return Status::error("reference motion: " + s.message());
     reference = std::make_unique<FourierTargets>(*settings.reference);
   }
-  record();
+  recorder.record(world, report);
   next_record += record_every;
   long long step = 0;
   for (; step < steps; ++step) {
@@ -189,12 +319,9 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
       report.cancelled = true;
       break;
     }
-    for (size_t p = 0; p < settings.pushes.size(); ++p)
-      if (!pushed[p] && world.time() + 0.5 * world.dt() >= settings.pushes[p].time_s) {
-        pushed[p] = 1;
-        if (Status s = world.push(push_links[p], settings.pushes[p].impulse_ns); !s.ok()) return s;
-        pushed_ns += glm::length(settings.pushes[p].impulse_ns);
-      }
+    if (Status s = deliverPushes(world, settings.pushes, push_links.value(), pushed, pushed_ns);
+        !s.ok())
+      return s;
     controller.update(world);
     world.step(zero);
     if (std::string why = divergence(world, pushed_ns); !why.empty()) {
@@ -207,70 +334,31 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     }
     last_com = world.centreOfMass();
 
-    // Tracking error against the motion's target, energy and torques.
-    const LinkPose now = world.jointPositions();
-    const LinkPose* wanted_pose = &controller.motionTarget();
+    // Tracking error against the motion's target (the reference's translations: the target's
+    // at the last recorded frame), energy and torques.
+    const LinkPose* wanted = &controller.motionTarget();
     if (reference) {
       reference->evaluate(world.time(), reference_pose);
-      reference_links = linkPoseFromSkeleton(plan, skeleton, reference_pose, reference_translations);
-      wanted_pose = &reference_links;
+      reference_links =
+          linkPoseFromSkeleton(plan, skeleton, reference_pose, recorder.reference_translations);
+      wanted = &reference_links;
     }
-    const LinkPose& wanted = *wanted_pose;
+    addTrackingError(plan, world.jointPositions(), *wanted, error_sum, error_count);
     world.servoTorques(torques);
     world.jointVelocities(velocities);
-    for (size_t li = 1; li < n; ++li) {
-      const JointType type = plan.links[li].type;
-      if (type == JointType::kBall)
-        error_sum += std::pow(glm::length(rotationVectorOf(glm::inverse(now.rotations[li]) *
-                                                           wanted.rotations[li])),
-                              2.0);
-      else if (type == JointType::kHinge)
-        error_sum += std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
-      if (type == JointType::kBall || type == JointType::kHinge) ++error_count;
-    }
-    for (size_t d = 0; d < dofs; ++d) {
-      report.energy_j += std::abs(torques[d] * velocities[d]) * world.dt();
-      report.torque_sq_per_kg += torques[d] * torques[d] * world.dt() / report.mass_kg;
-    }
+    addEffort(world, torques, velocities, report);
 
     // Contacts: footfalls, and any other link on the ground is a fall.
     const std::vector<std::uint8_t>& contacts = world.linkContacts();
     world.linkTransforms(transforms);
-    for (size_t f = 0; f < feet.size(); ++f) {
-      const bool down = contacts[static_cast<size_t>(feet[f])] > 0;
-      if (down) report.contact_share[f] += 1.0;
-      if (down && !was_down[f])
-        report.footfalls.push_back({static_cast<int>(f), world.time(),
-                                    glm::dvec3(transforms[static_cast<size_t>(feet[f])][3])});
-      was_down[f] = down ? 1 : 0;
-    }
-    const glm::dvec3 com = world.centreOfMass();
+    countFootfalls(world, feet, contacts, transforms, was_down, report);
     const glm::dvec3 up = glm::dmat3(transforms[0]) * pelvis_up;
     report.min_uprightness = std::min(report.min_uprightness, up.y);
-    if (!report.fell) {
-      for (size_t li = 0; li < n; ++li)
-        if (contacts[li] > 0 && !may_touch[li]) {
-          report.fell = true;
-          report.fall_reason = plan.links[li].name + " touched the ground";
-          break;
-        }
-      if (!report.fell && up.y < 0.0) {
-        report.fell = true;
-        report.fall_reason = "turned over (the pelvis upside down)";
-      }
-      const double height = com.y - world.groundHeight(com.x, com.z);
-      if (!report.fell && height < settings.fall_height_ratio * start_height) {
-        std::ostringstream reason;
-        reason.precision(3);
-        reason << "centre of mass " << height << " m above the ground (started at "
-               << start_height << " m)";
-        report.fell = true;
-        report.fall_reason = reason.str();
-      }
-      if (report.fell) report.fall_time_s = world.time();
-    }
+    if (!report.fell)
+      checkFall(plan, world, contacts, may_touch, up.y, start_height, settings.fall_height_ratio,
+                report);
     if (static_cast<double>(step + 1) + 1e-9 >= next_record) {
-      record();
+      recorder.record(world, report);
       next_record += record_every;
     }
     if (report.fell && settings.stop_at_fall) {

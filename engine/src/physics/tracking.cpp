@@ -194,7 +194,8 @@ FourierTargets::FourierTargets(const spectral::TargetMotion& target)
     channel.axis = model.axis;
     channel.mean = model.mean;
     for (const spectral::Harmonic& h : model.terms) {
-      channel.terms.push_back({h.n, h.amplitude * std::cos(h.phase), h.amplitude * std::sin(h.phase)});
+      const spectral::CartesianHarmonic c = spectral::cartesian(h);
+      channel.terms.push_back({c.n, c.b_cos, c.b_sin});
       max_n_ = std::max(max_n_, h.n);
     }
     rotates_[static_cast<size_t>(model.joint)] = 1;
@@ -206,12 +207,7 @@ FourierTargets::FourierTargets(const spectral::TargetMotion& target)
 }
 
 void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations) {
-  const double x = omega0_ * t;
-  const double s1 = std::sin(x), c1 = std::cos(x);
-  for (size_t n = 1; n < sin_n_.size(); ++n) {
-    sin_n_[n] = sin_n_[n - 1] * c1 + cos_n_[n - 1] * s1;
-    cos_n_[n] = cos_n_[n - 1] * c1 - sin_n_[n - 1] * s1;
-  }
+  spectral::angleMultiples(omega0_ * t, sin_n_, cos_n_);
   std::fill(vectors_.begin(), vectors_.end(), glm::dvec3(0.0));
   for (const Channel& channel : channels_) {
     double value = channel.mean;

@@ -242,6 +242,144 @@ struct World::Impl {
     return h0;
   }
 
+  // The multibody: the base and one Bullet link per plan link, jointed as the plan says.
+  void buildBody() {
+    const size_t n = plan.links.size();
+    const Link& base = plan.links[0];
+    body = std::make_unique<btMultiBody>(static_cast<int>(n) - 1, base.mass_kg, toBt(base.inertia),
+                                         /*fixedBase=*/false, /*canSleep=*/false);
+    btMultiBody& mb = *body;
+    for (size_t li = 1; li < n; ++li) {
+      const Link& link = plan.links[li];
+      const Link& parent = plan.links[static_cast<size_t>(link.parent)];
+      const int i = bulletLink(static_cast<int>(li));
+      const btQuaternion parent_to_this = toBt(glm::inverse(link.zero_rotation));
+      const btVector3 parent_com_to_pivot = toBt(link.pivot - parent.com);
+      const btVector3 pivot_to_com = toBt(link.com);
+      const int parent_index = bulletLink(link.parent);
+      switch (link.type) {
+        case JointType::kBall:
+          mb.setupSpherical(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
+                            parent_com_to_pivot, pivot_to_com, true);
+          break;
+        case JointType::kHinge:
+          mb.setupRevolute(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
+                           toBt(link.hinge_axis), parent_com_to_pivot, pivot_to_com, true);
+          break;
+        default:
+          mb.setupFixed(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
+                        parent_com_to_pivot, pivot_to_com, true);
+          break;
+      }
+    }
+    mb.finalizeMultiDof();
+    // Bullet damps multibody velocities by default (0.04): an external effect. Off.
+    mb.setLinearDamping(0.0);
+    mb.setAngularDamping(0.0);
+    mb.setHasSelfCollision(false);
+    mb.setUseGyroTerm(true);
+  }
+
+  // `initial`'s rotations and angles with the base at `base_position`, every velocity zero.
+  void setPose(const LinkPose& initial, const glm::dvec3& base_position) {
+    btMultiBody& mb = *body;
+    const glm::dquat r = glm::normalize(initial.base_rotation);
+    mb.setBasePos(toBt(base_position + r * plan.links[0].com));
+    mb.setWorldToBaseRot(toBt(glm::inverse(r)));
+    mb.setBaseVel(btVector3(0, 0, 0));
+    mb.setBaseOmega(btVector3(0, 0, 0));
+    for (size_t li = 1; li < plan.links.size(); ++li) {
+      const int i = bulletLink(static_cast<int>(li));
+      const Link& link = plan.links[li];
+      if (link.type == JointType::kBall) {
+        const glm::dquat q = glm::normalize(initial.rotations[li]);
+        const double pos[4] = {q.x, q.y, q.z, q.w};
+        const double zero[3] = {0.0, 0.0, 0.0};
+        mb.setJointPosMultiDof(i, pos);
+        mb.setJointVelMultiDof(i, zero);
+      } else if (link.type == JointType::kHinge) {
+        mb.setJointPos(i, initial.angles[li]);
+        mb.setJointVel(i, 0.0);
+      }
+    }
+  }
+
+  // Colliders: one compound per link (the shape offset from the centre of mass frame).
+  void buildColliders() {
+    btMultiBody& mb = *body;
+    for (size_t li = 0; li < plan.links.size(); ++li) {
+      const Link& link = plan.links[li];
+      std::unique_ptr<btCollisionShape> child;
+      switch (link.shape.type) {
+        case ShapeType::kCapsule:
+          child = std::make_unique<btCapsuleShape>(link.shape.radius, 2.0 * link.shape.half_length);
+          break;
+        case ShapeType::kBox:
+          child = std::make_unique<btBoxShape>(toBt(link.shape.half_extents));
+          break;
+        case ShapeType::kSphere:
+          child = std::make_unique<btSphereShape>(link.shape.radius);
+          break;
+      }
+      auto compound = std::make_unique<btCompoundShape>(false, 1);
+      compound->addChildShape(
+          btTransform(toBt(link.shape.rotation), toBt(link.shape.center - link.com)), child.get());
+      const int i = bulletLink(static_cast<int>(li));
+      auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, i);
+      collider->setCollisionShape(compound.get());
+      collider->setFriction(settings.ground_friction);
+      collider->setRestitution(0.0);
+      world->addCollisionObject(collider.get(), kCharacterGroup, kGroundGroup);
+      if (i < 0)
+        mb.setBaseCollider(collider.get());
+      else
+        mb.getLink(i).m_collider = collider.get();
+      child_shapes.push_back(std::move(child));
+      shapes.push_back(std::move(compound));
+      colliders.push_back(std::move(collider));
+    }
+  }
+
+  // Joint ranges: Bullet-solved constraints between each link and its parent (internal, like
+  // the servos). Both keep Bullet's default largest impulse per step (100 N m s).
+  void buildLimits() {
+    for (size_t li = 1; li < plan.links.size(); ++li) {
+      const Link& link = plan.links[li];
+      const int i = bulletLink(static_cast<int>(li));
+      std::unique_ptr<btMultiBodyConstraint> limit;
+      if (link.type == JointType::kHinge) {
+        limit = std::make_unique<btMultiBodyJointLimitConstraint>(body.get(), i, link.hinge_lower,
+                                                                  link.hinge_upper);
+      } else if (link.type == JointType::kBall) {
+        limit = std::make_unique<BallJointLimit>(body.get(), i, toBt(link.ball_center),
+                                                 toBt(link.ball_lower), toBt(link.ball_upper),
+                                                 btScalar(100.0));
+      } else {
+        continue;
+      }
+      world->addMultiBodyConstraint(limit.get());
+      limits.push_back(std::move(limit));
+    }
+  }
+
+  // Lowers or raises the character so its lowest point is ground_clearance_m above the highest
+  // ground within half its size of the base.
+  void placeOnGround(const LinkPose& initial) {
+    double lowest = std::numeric_limits<double>::max();
+    for (size_t li = 0; li < plan.links.size(); ++li)
+      lowest =
+          std::min(lowest, lowestPoint(plan.links[li].shape, linkTransform(static_cast<int>(li))));
+    glm::dvec3 base_position = initial.base_position;
+    double ground = -std::numeric_limits<double>::max();
+    const double reach = 0.5 * std::max(plan.size_m, 0.1);
+    for (double dx : {-reach, 0.0, reach})
+      for (double dz : {-reach, 0.0, reach})
+        ground = std::max(ground, groundHeight(base_position.x + dx, base_position.z + dz));
+    base_position.y += ground + settings.ground_clearance_m - lowest;
+    setPose(initial, base_position);
+    refreshTransforms();
+  }
+
   // Link index in Bullet (-1 base) for plan link li.
   static int bulletLink(int li) { return li - 1; }
 
@@ -302,11 +440,10 @@ struct World::Impl {
 World::World(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 World::~World() = default;
 
-Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPose& initial,
-                                             const WorldSettings& settings) {
-  if (Status s = settings.validate(); !s.ok())
-    return Status::error("world settings: " + s.message());
-  if (Status s = plan.validate(); !s.ok()) return Status::error("body plan: " + s.message());
+namespace {
+
+// One rotation and angle per link, finite, rotations of unit length.
+Status checkInitialPose(const BodyPlan& plan, const LinkPose& initial) {
   const size_t n = plan.links.size();
   if (initial.rotations.size() != n || initial.angles.size() != n)
     return Status::error("initial pose: rotations and angles need one entry per link (" +
@@ -320,9 +457,21 @@ Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPos
       !std::isfinite(initial.base_position.z) ||
       !(std::abs(glm::length(initial.base_rotation) - 1.0) < 1e-6))
     return Status::error("initial pose: base position must be finite, base rotation unit");
+  return {};
+}
+
+}  // namespace
+
+Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPose& initial,
+                                             const WorldSettings& settings) {
+  if (Status s = settings.validate(); !s.ok())
+    return Status::error("world settings: " + s.message());
+  if (Status s = plan.validate(); !s.ok()) return Status::error("body plan: " + s.message());
+  if (Status s = checkInitialPose(plan, initial); !s.ok()) return s;
 
   auto impl = std::make_unique<Impl>();
   Impl& w = *impl;
+  const size_t n = plan.links.size();
   w.plan = plan;
   w.settings = settings;
   w.dt = 1.0 / settings.step_hz;
@@ -341,135 +490,13 @@ Result<std::unique_ptr<World>> World::create(const BodyPlan& plan, const LinkPos
   w.world->getSolverInfo().m_numIterations = settings.solver_iterations;
 
   w.buildGround();
-
-  const Link& base = plan.links[0];
-  w.body = std::make_unique<btMultiBody>(static_cast<int>(n) - 1, base.mass_kg, toBt(base.inertia),
-                                         /*fixedBase=*/false, /*canSleep=*/false);
-  btMultiBody& mb = *w.body;
-  for (size_t li = 1; li < n; ++li) {
-    const Link& link = plan.links[li];
-    const Link& parent = plan.links[static_cast<size_t>(link.parent)];
-    const int i = Impl::bulletLink(static_cast<int>(li));
-    const btQuaternion parent_to_this = toBt(glm::inverse(link.zero_rotation));
-    const btVector3 parent_com_to_pivot = toBt(link.pivot - parent.com);
-    const btVector3 pivot_to_com = toBt(link.com);
-    const int parent_index = Impl::bulletLink(link.parent);
-    switch (link.type) {
-      case JointType::kBall:
-        mb.setupSpherical(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
-                          parent_com_to_pivot, pivot_to_com, true);
-        break;
-      case JointType::kHinge:
-        mb.setupRevolute(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
-                         toBt(link.hinge_axis), parent_com_to_pivot, pivot_to_com, true);
-        break;
-      default:
-        mb.setupFixed(i, link.mass_kg, toBt(link.inertia), parent_index, parent_to_this,
-                      parent_com_to_pivot, pivot_to_com, true);
-        break;
-    }
-  }
-  mb.finalizeMultiDof();
-  // Bullet damps multibody velocities by default (0.04): an external effect. Off.
-  mb.setLinearDamping(0.0);
-  mb.setAngularDamping(0.0);
-  mb.setHasSelfCollision(false);
-  mb.setUseGyroTerm(true);
-
-  auto setPose = [&](const glm::dvec3& base_position) {
-    const glm::dquat r = glm::normalize(initial.base_rotation);
-    mb.setBasePos(toBt(base_position + r * base.com));
-    mb.setWorldToBaseRot(toBt(glm::inverse(r)));
-    mb.setBaseVel(btVector3(0, 0, 0));
-    mb.setBaseOmega(btVector3(0, 0, 0));
-    for (size_t li = 1; li < n; ++li) {
-      const int i = Impl::bulletLink(static_cast<int>(li));
-      const Link& link = plan.links[li];
-      if (link.type == JointType::kBall) {
-        const glm::dquat q = glm::normalize(initial.rotations[li]);
-        const double pos[4] = {q.x, q.y, q.z, q.w};
-        const double zero[3] = {0.0, 0.0, 0.0};
-        mb.setJointPosMultiDof(i, pos);
-        mb.setJointVelMultiDof(i, zero);
-      } else if (link.type == JointType::kHinge) {
-        mb.setJointPos(i, initial.angles[li]);
-        mb.setJointVel(i, 0.0);
-      }
-    }
-  };
-  setPose(initial.base_position);
-
-  // Colliders: one compound per link (the shape offset from the centre of mass frame).
-  for (size_t li = 0; li < n; ++li) {
-    const Link& link = plan.links[li];
-    std::unique_ptr<btCollisionShape> child;
-    switch (link.shape.type) {
-      case ShapeType::kCapsule:
-        child = std::make_unique<btCapsuleShape>(link.shape.radius, 2.0 * link.shape.half_length);
-        break;
-      case ShapeType::kBox:
-        child = std::make_unique<btBoxShape>(toBt(link.shape.half_extents));
-        break;
-      case ShapeType::kSphere:
-        child = std::make_unique<btSphereShape>(link.shape.radius);
-        break;
-    }
-    auto compound = std::make_unique<btCompoundShape>(false, 1);
-    compound->addChildShape(
-        btTransform(toBt(link.shape.rotation), toBt(link.shape.center - link.com)), child.get());
-    const int i = Impl::bulletLink(static_cast<int>(li));
-    auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, i);
-    collider->setCollisionShape(compound.get());
-    collider->setFriction(settings.ground_friction);
-    collider->setRestitution(0.0);
-    w.world->addCollisionObject(collider.get(), kCharacterGroup, kGroundGroup);
-    if (i < 0)
-      mb.setBaseCollider(collider.get());
-    else
-      mb.getLink(i).m_collider = collider.get();
-    w.child_shapes.push_back(std::move(child));
-    w.shapes.push_back(std::move(compound));
-    w.colliders.push_back(std::move(collider));
-  }
-  w.world->addMultiBody(&mb);
-
-  // Joint ranges: Bullet-solved constraints between each link and its parent (internal, like
-  // the servos). Both keep Bullet's default largest impulse per step (100 N m s).
-  for (size_t li = 1; li < n; ++li) {
-    const Link& link = plan.links[li];
-    const int i = Impl::bulletLink(static_cast<int>(li));
-    std::unique_ptr<btMultiBodyConstraint> limit;
-    if (link.type == JointType::kHinge) {
-      limit = std::make_unique<btMultiBodyJointLimitConstraint>(&mb, i, link.hinge_lower,
-                                                                link.hinge_upper);
-    } else if (link.type == JointType::kBall) {
-      limit =
-          std::make_unique<BallJointLimit>(&mb, i, toBt(link.ball_center), toBt(link.ball_lower),
-                                           toBt(link.ball_upper), btScalar(100.0));
-    } else {
-      continue;
-    }
-    w.world->addMultiBodyConstraint(limit.get());
-    w.limits.push_back(std::move(limit));
-  }
-
+  w.buildBody();
+  w.setPose(initial, initial.base_position);
+  w.buildColliders();
+  w.world->addMultiBody(w.body.get());
+  w.buildLimits();
   w.refreshTransforms();
-  if (settings.place_on_ground) {
-    double lowest = std::numeric_limits<double>::max();
-    for (size_t li = 0; li < n; ++li)
-      lowest = std::min(lowest,
-                        lowestPoint(plan.links[li].shape, w.linkTransform(static_cast<int>(li))));
-    glm::dvec3 base_position = initial.base_position;
-    // The ground under the character: the highest within half its size of the base.
-    double ground = -std::numeric_limits<double>::max();
-    const double reach = 0.5 * std::max(plan.size_m, 0.1);
-    for (double dx : {-reach, 0.0, reach})
-      for (double dz : {-reach, 0.0, reach})
-        ground = std::max(ground, w.groundHeight(base_position.x + dx, base_position.z + dz));
-    base_position.y += ground + settings.ground_clearance_m - lowest;
-    setPose(base_position);
-    w.refreshTransforms();
-  }
+  if (settings.place_on_ground) w.placeOnGround(initial);
   return std::unique_ptr<World>(new World(std::move(impl)));
 }
 

@@ -6,6 +6,8 @@
 #include <initializer_list>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/json_keys.h"
+#include "sinew/core/path_json.h"
 #include "sinew/core/text.h"
 #include "sinew/spectral/target_io.h"
 #include "state_json.h"
@@ -25,11 +27,9 @@ nlohmann::json balanceJson(physics::BalanceGains gains) {
 
 Status saveController(const std::filesystem::path& path, const ControllerFile& c,
                       const motion::Skeleton& skeleton) {
-  const nlohmann::json json = {
+  nlohmann::json json = {
       {"format", "sinew.controller"},
       {"version", 1},
-      {"rig", toUtf8(c.rig)},  // paths are bytes; JSON text is UTF-8
-      {"clip", toUtf8(c.clip)},
       {"target", nlohmann::json::parse(spectral::targetToJson(c.target, skeleton))},
       {"balance", balanceJson(c.balance)},
       {"settings",
@@ -39,22 +39,13 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
         {"optimizer", c.optimizer},
         {"no_prior", c.no_prior}}},
       {"fitness", fitnessJson(c.fitness)}};
+  writePathJson(json, "rig", c.rig);
+  writePathJson(json, "clip", c.clip);
   return writeFileAtomically(
       path, json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 namespace {
-
-// Keys of `object` not in `known`, as warnings naming the file and the key.
-void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*> known,
-                 const std::string& where, std::vector<std::string>& warnings) {
-  if (!object.is_object()) return;
-  for (const auto& item : object.items()) {
-    bool found = false;
-    for (const char* k : known) found = found || item.key() == k;
-    if (!found) warnings.push_back(where + ": unknown key '" + item.key() + "' (ignored)");
-  }
-}
 
 // The first five gains are required; the ankle gains and swing_lift came later: a file without
 // them was made without them, and replays so (0).
@@ -66,7 +57,7 @@ Status readBalance(const nlohmann::json& json, const std::string& name, Controll
   unknownKeys(*b.value(),
               {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso", "ankle_sagittal",
                "ankle_coronal", "swing_lift"},
-              where, c.warnings);
+              where, &c.warnings);
   for (int i = 0; i < physics::kBalanceGainCount; ++i) {
     const char* key = physics::balanceGainName(i);
     double& gain = physics::balanceGain(c.balance, i);
@@ -91,7 +82,7 @@ Status readSettings(const nlohmann::json& json, const std::string& name, Control
   if (!found.ok()) return found.status();
   const nlohmann::json& s = *found.value();
   const std::string where = name + ": settings";
-  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior"}, where, c.warnings);
+  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior"}, where, &c.warnings);
   if (Status st = readNumber(s, "window_s", where, c.window_s); !st.ok()) return st;
   if (!(c.window_s > 0.0 && c.window_s <= 3600.0))
     return Status::error(where + ": window_s: expected seconds in (0, 3600]");
@@ -124,8 +115,9 @@ Result<ControllerFile> controllerFromJson(std::string_view text, const motion::S
     if (Status s = state_json::readInt(json, "version", name, 1, 1, version); !s.ok()) return s;
     ControllerFile c;
     unknownKeys(json,
-                {"format", "version", "rig", "clip", "target", "balance", "settings", "fitness"},
-                name, c.warnings);
+                {"format", "version", "rig", "rig_encoding", "clip", "clip_encoding", "target",
+                 "balance", "settings", "fitness"},
+                name, &c.warnings);
     if (!json.contains("target"))
       return Status::error(name +
                            ": target: missing (the controller's coefficients; a best.json "
@@ -141,10 +133,8 @@ Result<ControllerFile> controllerFromJson(std::string_view text, const motion::S
       if (!fitness.ok()) return Status::error(name + ": fitness: " + fitness.message());
       c.fitness = fitness.value();
     }
-    if (json.contains("rig") && !state_json::readString(json, "rig", name, c.rig).ok())
-      return Status::error(name + ": rig: expected a string");
-    if (json.contains("clip") && !state_json::readString(json, "clip", name, c.clip).ok())
-      return Status::error(name + ": clip: expected a string");
+    if (Status s = readPathJson(json, "rig", c.rig, name + ": "); !s.ok()) return s;
+    if (Status s = readPathJson(json, "clip", c.clip, name + ": "); !s.ok()) return s;
     return c;
   } catch (const std::exception& e) {
     return Status::error(name + ": " + e.what());

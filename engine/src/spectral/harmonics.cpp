@@ -8,6 +8,8 @@
 
 #include <kissfft/kissfft.hh>
 
+#include "sinew/core/assert.h"
+
 namespace sinew::spectral {
 
 std::vector<Harmonic> HarmonicSeries::strongest(int k) const {
@@ -56,14 +58,20 @@ FourierEvaluator::FourierEvaluator(double omega0, std::vector<Channel> channels)
   cosines_.assign(static_cast<size_t>(highest) + 1, 1.0);
 }
 
-void FourierEvaluator::setTime(double t) {
-  const double angle = omega0_ * t;
-  const double s1 = std::sin(angle);
-  const double c1 = std::cos(angle);
-  for (size_t n = 1; n < sines_.size(); ++n) {
-    sines_[n] = sines_[n - 1] * c1 + cosines_[n - 1] * s1;
-    cosines_[n] = cosines_[n - 1] * c1 - sines_[n - 1] * s1;
+void angleMultiples(double x, std::span<double> sines, std::span<double> cosines) {
+  SINEW_ASSERT(!sines.empty() && sines.size() == cosines.size(), "one table size, at least 1");
+  const double s1 = std::sin(x);
+  const double c1 = std::cos(x);
+  sines[0] = 0.0;
+  cosines[0] = 1.0;
+  for (size_t n = 1; n < sines.size(); ++n) {
+    sines[n] = sines[n - 1] * c1 + cosines[n - 1] * s1;
+    cosines[n] = cosines[n - 1] * c1 - sines[n - 1] * s1;
   }
+}
+
+void FourierEvaluator::setTime(double t) {
+  angleMultiples(omega0_ * t, sines_, cosines_);
 }
 
 double FourierEvaluator::value(size_t c) const {

@@ -1,11 +1,14 @@
 #include "sinew/spectral/target_io.h"
 
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/json_keys.h"
 #include "sinew/core/text.h"
 #include "sinew/spectral/limits.h"
 
@@ -47,17 +50,6 @@ Status wholeNumber(const json& object, const char* key, const std::string& where
   }
   out = static_cast<int>(value);
   return {};
-}
-
-// Keys of `object` that are not in `known`, reported as "<where>: unknown key 'k' (ignored)".
-void unknownKeys(const json& object, std::initializer_list<const char*> known,
-                 const std::string& where, std::vector<std::string>* warnings) {
-  if (warnings == nullptr || !object.is_object()) return;
-  for (const auto& item : object.items()) {
-    bool found = false;
-    for (const char* k : known) found = found || item.key() == k;
-    if (!found) warnings->push_back(where + ": unknown key '" + item.key() + "' (ignored)");
-  }
 }
 
 // An array at `key` (empty when absent) of at most `limit` entries.
@@ -159,10 +151,8 @@ namespace {
 Status readJoints(const json& document, const motion::Skeleton& skeleton, const std::string& source,
                   TargetMotion& target, std::vector<std::string>* warnings) {
   const json* joints = nullptr;
-  if (Status s =
-          arrayOf(document, "joints", source, static_cast<size_t>(skeleton.jointCount()), joints);
-      !s.ok())
-    return s;
+  // No limit here: the count must equal the skeleton's, which the message below says.
+  if (Status s = arrayOf(document, "joints", source, SIZE_MAX, joints); !s.ok()) return s;
   if (static_cast<int>(joints->size()) != skeleton.jointCount()) {
     return Status::error(source + ": joints: expected " + std::to_string(skeleton.jointCount()) +
                          " joints for this skeleton, found " + std::to_string(joints->size()));
@@ -247,6 +237,7 @@ Result<ChannelModel> readChannel(const json& item, const motion::Skeleton& skele
   const json* harmonics = nullptr;
   if (Status s = arrayOf(item, "harmonics", where, kMaxHarmonicsPerChannel, harmonics); !s.ok())
     return s;
+  std::vector<bool> seen(static_cast<size_t>(kMaxHarmonicIndex) + 1, false);
   for (size_t h = 0; h < harmonics->size(); ++h) {
     const std::string at = where + ".harmonics[" + std::to_string(h) + "]";
     const json& term = (*harmonics)[h];
@@ -256,6 +247,10 @@ Result<ChannelModel> readChannel(const json& item, const motion::Skeleton& skele
     if (Status s = wholeNumber(term, "n", at, 1, kMaxHarmonicIndex, harmonic.n); !s.ok()) return s;
     if (Status s = number(term, "amplitude", at, harmonic.amplitude); !s.ok()) return s;
     if (Status s = number(term, "phase_rad", at, harmonic.phase); !s.ok()) return s;
+    if (seen[static_cast<size_t>(harmonic.n)])  // one coefficient pair per index, as a genome
+      return Status::error(at + ".n: harmonic " + std::to_string(harmonic.n) +
+                           " appears twice in this channel");
+    seen[static_cast<size_t>(harmonic.n)] = true;
     channel.terms.push_back(harmonic);
   }
   return channel;

@@ -98,7 +98,8 @@ class PdController {
   std::vector<Shape> foot_shapes_;  // (feet) the sole boxes
 };
 
-// The rotation vector (log map) of a unit quaternion, radians, shortest arc.
+// The rotation vector (log map) of a unit quaternion, radians, shortest arc: core's
+// shortRotationVector of q normalised (rotation.h owns the maths; this name stays for callers).
 glm::dvec3 rotationVectorOf(const glm::dquat& q);
 
 }  // namespace sinew::physics

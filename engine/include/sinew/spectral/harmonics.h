@@ -26,8 +26,8 @@ struct HarmonicSeries {
 };
 
 // The one evaluator of Fourier series theta(t) = A + sum B sin(omega t + D): the spectral model,
-// the target motion, plots and the editor's curves call these (the physics controller's
-// FourierTargets repeats FourierEvaluator's arithmetic; it is to use it).
+// the target motion, plots and the editor's curves call these; the physics controller's
+// FourierTargets takes angleMultiples and cartesian from here.
 
 // One term, B sin(omega t + D): omega = n omega0 for a harmonic, a secondary term's own omega.
 double sinusoid(double amplitude, double omega, double phase, double t);
@@ -44,6 +44,12 @@ struct CartesianHarmonic {
   double b_sin = 0.0;  // B sin D
 };
 CartesianHarmonic cartesian(const Harmonic& h);
+
+// sin(n x) and cos(n x) for n = 0 .. size - 1 from one sincos of x by the angle-addition
+// recurrence sin((n+1)x) = sin(nx) cos(x) + cos(nx) sin(x), cos((n+1)x) = cos(nx) cos(x) -
+// sin(nx) sin(x): FourierEvaluator's tables, and FourierTargets'. Precondition: the spans are of
+// one size, at least 1.
+void angleMultiples(double x, std::span<double> sines, std::span<double> cosines);
 
 // Many channels' series at one time from one sincos: sin(n x) and cos(n x) for every n by the
 // angle-addition recurrence instead of one sin per term (its rounding grows with n, to 1e-14 rad

@@ -1,0 +1,18 @@
+// Keys a reader of Sinew's JSON files (coefficients, controllers) does not know: each is a
+// warning naming the file and the field, not an error, so a newer file still reads.
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace sinew {
+
+// For every key of `object` (when it is an object) not in `known`, appends
+// "<where>: unknown key '<key>' (ignored)" to `warnings` (nothing when warnings is null).
+void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*> known,
+                 const std::string& where, std::vector<std::string>* warnings);
+
+}  // namespace sinew
