@@ -181,41 +181,50 @@ std::vector<FootCycle> targetFootCycles(const BodyPlan& plan, const motion::Skel
   return cycles;
 }
 
+namespace {
+
+// The series of a target's channels, in its order, for FourierEvaluator.
+std::vector<spectral::FourierEvaluator::Channel> seriesOf(const spectral::TargetMotion& target) {
+  std::vector<spectral::FourierEvaluator::Channel> series;
+  for (const spectral::ChannelModel& model : target.channels) {
+    spectral::FourierEvaluator::Channel channel;
+    channel.mean = model.mean;
+    for (const spectral::Harmonic& h : model.terms) channel.terms.push_back(spectral::cartesian(h));
+    series.push_back(std::move(channel));
+  }
+  return series;
+}
+
+}  // namespace
+
 FourierTargets::FourierTargets(const spectral::TargetMotion& target)
     : omega0_(target.omega0),
       base_(target.base_rotations),
+      base_translations_(target.base_translations),
+      series_(target.omega0, seriesOf(target)),
       secondary_(target.secondary),
       vectors_(target.base_rotations.size()),
       rotates_(target.base_rotations.size(), 0) {
   for (const spectral::ChannelModel& model : target.channels) {
-    if (model.kind != spectral::SignalKind::kRotation) continue;
-    Channel channel;
-    channel.joint = model.joint;
-    channel.axis = model.axis;
-    channel.mean = model.mean;
-    for (const spectral::Harmonic& h : model.terms) {
-      const spectral::CartesianHarmonic c = spectral::cartesian(h);
-      channel.terms.push_back({c.n, c.b_cos, c.b_sin});
-      max_n_ = std::max(max_n_, h.n);
-    }
-    rotates_[static_cast<size_t>(model.joint)] = 1;
-    channels_.push_back(std::move(channel));
+    const bool rotation = model.kind == spectral::SignalKind::kRotation;
+    slots_.push_back({model.joint, model.axis, rotation, model.trend});
+    if (rotation) rotates_[static_cast<size_t>(model.joint)] = 1;
+    for (const spectral::Harmonic& h : model.terms) max_n_ = std::max(max_n_, h.n);
   }
   for (const spectral::SecondaryTerm& term : secondary_) rotates_[static_cast<size_t>(term.joint)] = 1;
-  sin_n_.assign(static_cast<size_t>(max_n_) + 1, 0.0);
-  cos_n_.assign(static_cast<size_t>(max_n_) + 1, 1.0);
 }
 
-void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations) {
-  spectral::angleMultiples(omega0_ * t, sin_n_, cos_n_);
+void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations,
+                              std::span<glm::dvec3> translations) {
+  series_.setTime(t);
   std::fill(vectors_.begin(), vectors_.end(), glm::dvec3(0.0));
-  for (const Channel& channel : channels_) {
-    double value = channel.mean;
-    for (const Term& term : channel.terms) {
-      const size_t n = static_cast<size_t>(term.n);
-      value += term.b_cos_d * sin_n_[n] + term.b_sin_d * cos_n_[n];
-    }
-    vectors_[static_cast<size_t>(channel.joint)][channel.axis] = value;
+  const bool translate = !translations.empty();
+  if (translate) std::copy(base_translations_.begin(), base_translations_.end(), translations.begin());
+  for (size_t c = 0; c < slots_.size(); ++c) {
+    const Slot& slot = slots_[c];
+    const size_t joint = static_cast<size_t>(slot.joint);
+    if (slot.rotation) vectors_[joint][slot.axis] = series_.value(c);
+    else if (translate) translations[joint][slot.axis] += series_.value(c) + slot.trend * t;
   }
   for (const spectral::SecondaryTerm& term : secondary_)
     vectors_[static_cast<size_t>(term.joint)][term.axis] +=
@@ -344,9 +353,6 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
   c->standing_ = standing;
   c->rotations_.resize(static_cast<size_t>(skeleton.jointCount()));
   c->translations_ = target.base_translations;
-  c->base_translations_ = target.base_translations;
-  for (const spectral::ChannelModel& channel : target.channels)
-    if (channel.kind != spectral::SignalKind::kRotation) c->translation_channels_.push_back(channel);
   for (size_t li = 0; li < plan.links.size(); ++li)
     if (plan.links[li].foot) c->feet_.push_back(static_cast<int>(li));
 
@@ -407,21 +413,12 @@ void TrackingController::liftSwingFeet(double time) {
   }
 }
 
-// The target's translations with its travel (TargetMotion::pose's): the reference centre of
-// mass moves, so its velocity is the motion's, not only what the joints' turning gives.
-void TrackingController::evaluateTranslations(double time) {
-  translations_ = base_translations_;
-  for (const spectral::ChannelModel& channel : translation_channels_)
-    translations_[static_cast<size_t>(channel.joint)][channel.axis] +=
-        spectral::evaluate(channel.mean, channel.terms, fourier_->omega0(), time) +
-        channel.trend * time;
-}
-
 void TrackingController::update(World& world) {
   const BodyPlan& plan = *plan_;
   const double t = world.time();
-  fourier_->evaluate(t, rotations_);
-  evaluateTranslations(t);
+  // The whole pose, the root's travel included: the reference centre of mass moves with the
+  // motion, so its velocity is the motion's, not only what the joints' turning gives.
+  fourier_->evaluate(t, rotations_, translations_);
   motion_ = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
   // Ramp from the standing pose into the motion.
   const double ramp = settings_.ramp_s > 0.0 ? std::clamp(t / settings_.ramp_s, 0.0, 1.0) : 1.0;

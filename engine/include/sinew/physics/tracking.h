@@ -40,39 +40,35 @@ namespace sinew::physics {
 
 class World;
 
-// A TargetMotion's rotations evaluated by the angle-addition recurrence: sin and cos of the
-// stride angle x = omega0 t once per call, sin(n x) and cos(n x) from them by
-//   sin((n+1)x) = sin(nx) cos(x) + cos(nx) sin(x),  cos((n+1)x) = cos(nx) cos(x) - sin(nx) sin(x),
-// and each term B sin(n x + D) as (B cos D) sin(n x) + (B sin D) cos(n x): one sin/cos pair per
-// step for all channels (plus one per secondary term), not one sin() per harmonic.
+// A TargetMotion's pose evaluated by spectral's FourierEvaluator (the angle-addition recurrence:
+// one sin/cos pair per step for every channel, plus one per secondary term, not one sin() per
+// harmonic).
 class FourierTargets {
  public:
   // Precondition: target validated against its skeleton.
   explicit FourierTargets(const spectral::TargetMotion& target);
 
-  // Local rotations (joints) at time t, as TargetMotion::pose gives them (to 1e-12).
-  void evaluate(double t, std::span<glm::dquat> rotations);
+  // Local rotations (joints) at time t, as TargetMotion::pose gives them (to 1e-12), and, when
+  // `translations` is not empty (joints), the translations with the travel.
+  void evaluate(double t, std::span<glm::dquat> rotations,
+                std::span<glm::dvec3> translations = {});
   int maxHarmonic() const { return max_n_; }
   double omega0() const { return omega0_; }
 
  private:
-  struct Term {
-    int n = 1;
-    double b_cos_d = 0.0;
-    double b_sin_d = 0.0;
-  };
-  struct Channel {
+  struct Slot {
     int joint = 0;
     int axis = 0;
-    double mean = 0.0;
-    std::vector<Term> terms;
+    bool rotation = true;  // a rotation vector's component, or a translation's
+    double trend = 0.0;    // translations: metres per second
   };
   double omega0_ = 0.0;
   int max_n_ = 0;
   std::vector<glm::dquat> base_;
-  std::vector<Channel> channels_;
+  std::vector<glm::dvec3> base_translations_;
+  spectral::FourierEvaluator series_;
+  std::vector<Slot> slots_;  // (series_ channels) where each value goes
   std::vector<spectral::SecondaryTerm> secondary_;
-  std::vector<double> sin_n_, cos_n_;
   std::vector<glm::dvec3> vectors_;
   std::vector<char> rotates_;
 };
@@ -153,7 +149,6 @@ class TrackingController {
   void liftSwingFeet(double time);
   void applyFeedback(const World& world);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
-  void evaluateTranslations(double time);  // translations_ at `time`
 
   const BodyPlan* plan_ = nullptr;
   const motion::Skeleton* skeleton_ = nullptr;
@@ -164,8 +159,6 @@ class TrackingController {
   LinkPose target_;
   std::vector<glm::dquat> rotations_;     // (joints) scratch
   std::vector<glm::dvec3> translations_;  // (joints) the target's translations at the present time
-  std::vector<glm::dvec3> base_translations_;  // (joints) the target's base translations
-  std::vector<spectral::ChannelModel> translation_channels_;  // the target's (its travel)
   std::vector<int> feet_;                 // foot links
   std::vector<int> hips_;                 // (feet) the leg's top link below the common link
   int pelvis_ = 0;                        // the link the legs meet at
