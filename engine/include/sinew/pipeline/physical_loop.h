@@ -7,6 +7,8 @@
 // over the swing's first frames). Root motion travels, or stays in place.
 #pragma once
 
+#include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -14,9 +16,13 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "sinew/core/status.h"
+#include "sinew/motion/asset.h"
 #include "sinew/motion/clip.h"
 #include "sinew/motion/skeleton.h"
 #include "sinew/physics/simulation.h"
+#include "sinew/pipeline/run_style.h"
+#include "sinew/pipeline/settings.h"
+#include "sinew/search/problem.h"
 #include "sinew/spectral/target_motion.h"
 
 namespace sinew::pipeline {
@@ -69,5 +75,26 @@ struct PhysicalLoop {
 Result<PhysicalLoop> physicalLoop(const motion::Skeleton& skeleton,
                                   const physics::SimulationReport& run, double settle_s,
                                   const LoopSettings& settings = {});
+
+// A search's best point replayed over the problem's window with its motion recorded (what
+// best.bvh holds), and the stride its controller ran at.
+struct BestReplay {
+  physics::SimulationReport run;
+  double stride_s = 0.0;
+};
+BestReplay replayBest(const search::Problem& problem, std::span<const double> point);
+
+// The replay's loop written into `dir` (created): best_loop.bvh and best_loop.glb (on `rig`'s
+// skeleton, with its mesh when it came from glTF) and loop.json (PhysicalLoop::json, "in_place",
+// and under "style" the loop's style against `edits.styles` when there are any, as
+// measureRunStyle measures it). What `sinew evolve` and the editor's Export write. A failure
+// names the file; a run that gives no loop is physicalLoop's message, and nothing is written.
+struct LoopFiles {
+  PhysicalLoop loop;
+  RunStyleReport style;  // empty without styles
+};
+Result<LoopFiles> writeLoopFiles(const search::Problem& problem, const BestReplay& best,
+                                    const MotionEdits& edits, const motion::MotionAsset& rig,
+                                    const LoopSettings& settings, const std::filesystem::path& dir);
 
 }  // namespace sinew::pipeline
