@@ -248,7 +248,8 @@ Result<std::unique_ptr<search::Session>> makeSession(const EvolveArgs& args,
     if (Status budget = session.setBudget(std::max(0, args.generations), args.minutes); !budget.ok())
       return budget;
   }
-  if (!args.weights.empty()) session.setWeights(chosen.search.weights);  // from the next generation
+  if (!args.weights.empty() || args.has("--style-weight"))
+    session.setWeights(chosen.search.weights);  // from the next generation
   if (session.finished())
     return Status::error(args.resume + ": the search's budget (" +
                          std::to_string(session.settings().generations) + " generations, " +
@@ -385,6 +386,7 @@ int runEvolve(const EvolveArgs& args) {
     if (chosen.ok()) {
       if (Status w = applyWeightFlags(args.weights, chosen.value().search.weights); !w.ok())
         return fail(w.message());
+      if (args.has("--style-weight")) chosen.value().search.weights.style = args.style_weight;
     }
   } else {
     chosen = chosenSettings(args);

@@ -18,6 +18,7 @@
 #include "sinew/pipeline/physical_loop.h"
 #include "sinew/pipeline/pipeline.h"
 #include "sinew/search/controller_io.h"
+#include "sinew/search/session.h"
 #include "sinew/spectral/style.h"
 #include "support/test_support.h"
 
@@ -106,6 +107,35 @@ TEST(RunStyleDistance, ATargetsOwnClipIsNearItAndAnotherStyleIsFar) {
   // A run too short for one period counts as still: far from a moving target.
   const motion::Clip still = motion::clipFrames(own, 0, 10);
   EXPECT_GT(spectral::runStyleDistance(asset.skeleton, still, neutral.value(), omega, 0.0), far);
+}
+
+TEST(StyleWeight, ACheckpointKeepsItAndOneFromBeforeTheTermReadsAsZero) {
+  pipeline::ProjectSettings settings;
+  settings.rig = walkPath().string();
+  settings.physics.window_s = 1.0;
+  settings.search.weights.style = 2.5;
+  const motion::MotionAsset asset = walk();
+  Result<pipeline::SearchSetup> setup = pipeline::prepareSearch(asset.skeleton, asset.clips.front(), settings);
+  ASSERT_TRUE(setup.ok()) << setup.message();
+  search::EvolveSettings evolve;
+  evolve.generations = 1;
+  Result<std::unique_ptr<search::Session>> session = search::Session::create(setup.value().problem, evolve);
+  ASSERT_TRUE(session.ok()) << session.message();
+  nlohmann::json checkpoint = session.value()->checkpoint();
+  EXPECT_EQ(checkpoint["weights"]["style"].get<double>(), 2.5);
+  Result<std::unique_ptr<search::Session>> resumed = search::Session::resume(setup.value().problem, checkpoint);
+  ASSERT_TRUE(resumed.ok()) << resumed.message();
+  EXPECT_EQ(resumed.value()->problem().weights.style, 2.5);
+  checkpoint["weights"].erase("style");
+  resumed = search::Session::resume(setup.value().problem, checkpoint);
+  ASSERT_TRUE(resumed.ok()) << resumed.message();
+  EXPECT_EQ(resumed.value()->problem().weights.style, 0.0);
+  // A controller's fitness from before the term reads with style 0.
+  nlohmann::json fitness = search::fitnessJson(search::FitnessTerms{});
+  fitness.erase("style");
+  Result<search::FitnessTerms> terms = search::fitnessFromJson(fitness);
+  ASSERT_TRUE(terms.ok()) << terms.message();
+  EXPECT_EQ(terms.value().style, 0.0);
 }
 
 // The largest joint rotation change between two frames, degrees.

@@ -33,11 +33,11 @@ struct Fit {
   int window_strides = 0;
 };
 Result<Fit> fitWindow(const motion::Skeleton& skeleton, const motion::Clip& motion,
-                      double settle_s, const LoopSettings& settings) {
+                      double settle_s, double end_s, const LoopSettings& settings) {
   const int skip = static_cast<int>(std::lround(settle_s / motion.frame_time));
-  if (skip + 2 >= motion.frame_count)
-    return Status::error("loop: the run ended before its first stride did");
-  const motion::Clip rest = motion::clipFrames(motion, skip, motion.frame_count - skip);
+  const int end = std::min(motion.frame_count, static_cast<int>(std::floor(end_s / motion.frame_time)) + 1);
+  if (skip + 2 >= end) return Status::error("loop: the run ended before its first stride did");
+  const motion::Clip rest = motion::clipFrames(motion, skip, end - skip);
   spectral::AnalysisSettings analysis;
   analysis.harmonics = settings.harmonics;
   analysis.max_strides = settings.strides;
@@ -72,7 +72,8 @@ struct Plant {
 // rising ends the plant), once per stride.
 std::vector<Plant> contactPhases(const motion::Skeleton& skeleton,
                                  const physics::SimulationReport& run, const Fit& fit,
-                                 const motion::Clip& loop, int strides, double frame_step) {
+                                 const motion::Clip& loop, double climb_m, int strides,
+                                 double frame_step) {
   std::vector<Plant> plants;
   const double period = fit.model.period();
   const int n = loop.frame_count;
@@ -91,13 +92,15 @@ std::vector<Plant> contactPhases(const motion::Skeleton& skeleton,
     if (std::abs(mean) < 1e-9) continue;
     double phase = std::arg(mean) / (2.0 * std::numbers::pi);
     if (phase < 0.0) phase += 1.0;
+    // The ankle's height in frame u of the loop played on (a lap further up by its climb).
+    const auto height = [&](int u) {
+      return motion::worldPositions(skeleton, loop, u % n)[joint].y + climb_m * (u / n);
+    };
     for (int s = 0; s < strides; ++s) {
       Plant plant{joint, run.feet[f], static_cast<int>(std::lround((phase + s) * period / frame_step)), 1};
-      const double touchdown = motion::worldPositions(skeleton, loop, plant.first % n)[joint].y;
+      const double touchdown = height(plant.first);
       const int most = static_cast<int>(kMaxContactShare * period / frame_step);
-      while (plant.frames < most &&
-             motion::worldPositions(skeleton, loop, (plant.first + plant.frames) % n)[joint].y <
-                 touchdown + kLift_m)
+      while (plant.frames < most && height(plant.first + plant.frames) < touchdown + kLift_m)
         ++plant.frames;
       plants.push_back(plant);
     }
@@ -245,6 +248,19 @@ double deviationFromRun(const motion::Clip& loop_clip, double model_step, double
   return count > 0 ? std::sqrt(squared / count) * 180.0 / std::numbers::pi : 0.0;
 }
 
+// In place: every translation channel's trend (the root motion's travel) taken out of the
+// clip's frames, which the model's time `step` apart; the sway and bob stay. Travel then 0.
+void removeTravel(const spectral::TargetMotion& model, double step, motion::Clip& clip,
+                  glm::dvec3& travel_m) {
+  for (const spectral::ChannelModel& channel : model.channels) {
+    if (channel.kind == spectral::SignalKind::kRotation || channel.trend == 0.0) continue;
+    for (int f = 0; f < clip.frame_count; ++f)
+      clip.translations[static_cast<size_t>(f) * clip.joint_count + channel.joint][channel.axis] -=
+          channel.trend * f * step;
+  }
+  travel_m = glm::dvec3(0.0);
+}
+
 }  // namespace
 
 Status LoopSettings::validate() const {
@@ -315,7 +331,9 @@ Result<PhysicalLoop> physicalLoop(const motion::Skeleton& skeleton,
                                   const LoopSettings& settings) {
   if (Status valid = settings.validate(); !valid.ok()) return valid;
   if (run.motion.frame_count < 2) return Status::error("loop: the run recorded no motion");
-  Result<Fit> fit = fitWindow(skeleton, run.motion, settle_s, settings);
+  // A run that fell: only what came half a stride before the fall (the collapse never loops).
+  const double end_s = run.fell ? run.fall_time_s - 0.5 * settle_s : run.motion.duration();
+  Result<Fit> fit = fitWindow(skeleton, run.motion, settle_s, end_s, settings);
   if (!fit.ok()) return fit.status();
   PhysicalLoop loop;
   loop.model = fit.value().model;
@@ -328,25 +346,22 @@ Result<PhysicalLoop> physicalLoop(const motion::Skeleton& skeleton,
   const motion::Clip sampled = loop.model.sample(fps, settings.strides);
   const int n = sampled.frame_count - 1;
   loop.clip = motion::clipFrames(sampled, 0, n);
-  loop.travel_m = sampled.translation(n, 0) - sampled.translation(0, 0);
+  // What the whole figure travels over the loop (the closing frame is the first, moved by it).
+  const int pelvis = motion::pelvisJoint(skeleton);
+  loop.travel_m = motion::worldPositions(skeleton, sampled, n)[pelvis] -
+                  motion::worldPositions(skeleton, sampled, 0)[pelvis];
   const double model_step = settings.strides * loop.period_s / n;
   // The plant, on the travelling loop.
   Result<std::vector<motion::Foot>> feet = motion::findFeet(skeleton, loop.clip);
   if (feet.ok()) {
     const std::vector<Plant> plants =
-        contactPhases(skeleton, run, fit.value(), loop.clip, settings.strides, model_step);
+        contactPhases(skeleton, run, fit.value(), loop.clip, loop.travel_m.y, settings.strides, model_step);
     const int blend = std::max(1, static_cast<int>(std::lround(settings.blend_s * fps)));
     plantFeet(skeleton, loop.clip, feet.value(), plants, blend, loop.travel_m, loop);
     measureSlidesAfter(skeleton, loop.clip, feet.value(), plants, loop.travel_m, loop);
   }
   loop.deviation_deg_rms = deviationFromRun(loop.clip, model_step, loop.run_start_s, run.motion);
-  if (settings.in_place) {
-    const glm::dvec3 travel = flat(loop.travel_m);
-    for (int f = 0; f < n; ++f)
-      loop.clip.translations[static_cast<size_t>(f) * loop.clip.joint_count] -=
-          travel * (static_cast<double>(f) / n);
-    loop.travel_m -= travel;
-  }
+  if (settings.in_place) removeTravel(loop.model, model_step, loop.clip, loop.travel_m);
   measureSeam(skeleton, loop.clip, loop);
   return loop;
 }

@@ -29,7 +29,7 @@ namespace sinew::pipeline {
 
 struct LoopSettings {
   int strides = 2;          // whole strides in the loop, 1..16
-  bool in_place = false;    // the root's horizontal travel removed (its sway kept)
+  bool in_place = false;    // the root motion's travel (every translation trend) removed; sway kept
   double fps = 0.0;         // frames per second of the loop; 0: the run's recording rate
   int harmonics = 10;       // K per joint of the fit (the style analysis' K), 1..64
   double blend_s = 0.2;     // a plant's correction fades over this after lift-off, seconds, > 0
@@ -70,7 +70,7 @@ struct PhysicalLoop {
 
 // The loop of `run` (a simulation of `skeleton`; its recorded motion, feet and footfalls), after
 // `settle_s` seconds: the first stride, the controller's (the run's own stride is looked for
-// within 25% of it). Fails, saying why, when what is left of the run holds no
+// within 25% of it); of a run that fell, only what came half a stride before the fall. Fails, saying why, when what is left of the run holds no
 // stride or fewer whole strides than settings.strides asks.
 Result<PhysicalLoop> physicalLoop(const motion::Skeleton& skeleton,
                                   const physics::SimulationReport& run, double settle_s,
