@@ -210,22 +210,25 @@ void measureSlidesAfter(const motion::Skeleton& skeleton, const motion::Clip& cl
   }
 }
 
-// Seam (last frame to first, plus travel) and the largest step between frames, degrees and cm.
-void measureSeam(const motion::Skeleton& skeleton, const motion::Clip& clip, PhysicalLoop& loop) {
+// Seam (last frame to first, each joint moved by what it travels in a lap: `lap`, joints) and
+// the largest step between frames, degrees and cm.
+void measureSeam(const motion::Skeleton& skeleton, const motion::Clip& clip,
+                 const std::vector<glm::dvec3>& lap, PhysicalLoop& loop) {
   const int n = clip.frame_count;
   std::vector<std::vector<glm::dvec3>> positions;
   for (int f = 0; f < n; ++f) positions.push_back(motion::worldPositions(skeleton, clip, f));
-  const auto step = [&](int a, int b, const glm::dvec3& shift, double& deg, double& cm) {
+  const std::vector<glm::dvec3> none(lap.size(), glm::dvec3(0.0));
+  const auto step = [&](int a, int b, const std::vector<glm::dvec3>& shift, double& deg, double& cm) {
     deg = cm = 0.0;
     for (int j = 0; j < clip.joint_count; ++j) {
       deg = std::max(deg, angleBetween(clip.rotation(a, j), clip.rotation(b, j)) * 180.0 / std::numbers::pi);
-      cm = std::max(cm, 100.0 * glm::length(positions[b][j] + shift - positions[a][j]));
+      cm = std::max(cm, 100.0 * glm::length(positions[b][j] + shift[j] - positions[a][j]));
     }
   };
-  step(n - 1, 0, loop.travel_m, loop.seam_deg, loop.seam_cm);
+  step(n - 1, 0, lap, loop.seam_deg, loop.seam_cm);
   for (int f = 0; f + 1 < n; ++f) {
     double deg = 0.0, cm = 0.0;
-    step(f, f + 1, glm::dvec3(0.0), deg, cm);
+    step(f, f + 1, none, deg, cm);
     loop.step_deg_max = std::max(loop.step_deg_max, deg);
     loop.step_cm_max = std::max(loop.step_cm_max, cm);
   }
@@ -276,12 +279,17 @@ Status LoopSettings::validate() const {
 motion::Clip PhysicalLoop::played(int laps) const {
   motion::Clip out = clip;
   const size_t per_lap = clip.rotations.size();
+  const double lap_s = strides * period_s;
   for (int lap = 1; lap < laps; ++lap) {
     out.rotations.insert(out.rotations.end(), clip.rotations.begin(), clip.rotations.end());
     out.translations.insert(out.translations.end(), clip.translations.begin(), clip.translations.end());
     if (!clip.scales.empty()) out.scales.insert(out.scales.end(), clip.scales.begin(), clip.scales.end());
-    for (int f = 0; f < clip.frame_count; ++f)
-      out.translations[lap * per_lap + static_cast<size_t>(f) * clip.joint_count] += travel_m * static_cast<double>(lap);
+    for (const spectral::ChannelModel& channel : model.channels) {  // each lap further on
+      if (channel.kind == spectral::SignalKind::kRotation || in_place) continue;
+      for (int f = 0; f < clip.frame_count; ++f)
+        out.translations[lap * per_lap + static_cast<size_t>(f) * clip.joint_count + channel.joint]
+                        [channel.axis] += channel.trend * lap_s * lap;
+    }
   }
   out.frame_count = clip.frame_count * std::max(1, laps);
   return out;
@@ -347,9 +355,10 @@ Result<PhysicalLoop> physicalLoop(const motion::Skeleton& skeleton,
   const int n = sampled.frame_count - 1;
   loop.clip = motion::clipFrames(sampled, 0, n);
   // What the whole figure travels over the loop (the closing frame is the first, moved by it).
-  const int pelvis = motion::pelvisJoint(skeleton);
-  loop.travel_m = motion::worldPositions(skeleton, sampled, n)[pelvis] -
-                  motion::worldPositions(skeleton, sampled, 0)[pelvis];
+  const std::vector<glm::dvec3> closing = motion::worldPositions(skeleton, sampled, n);
+  std::vector<glm::dvec3> lap = motion::worldPositions(skeleton, sampled, 0);
+  for (size_t j = 0; j < lap.size(); ++j) lap[j] = closing[j] - lap[j];
+  loop.travel_m = lap[static_cast<size_t>(motion::pelvisJoint(skeleton))];
   const double model_step = settings.strides * loop.period_s / n;
   // The plant, on the travelling loop.
   Result<std::vector<motion::Foot>> feet = motion::findFeet(skeleton, loop.clip);
@@ -361,8 +370,12 @@ Result<PhysicalLoop> physicalLoop(const motion::Skeleton& skeleton,
     measureSlidesAfter(skeleton, loop.clip, feet.value(), plants, loop.travel_m, loop);
   }
   loop.deviation_deg_rms = deviationFromRun(loop.clip, model_step, loop.run_start_s, run.motion);
-  if (settings.in_place) removeTravel(loop.model, model_step, loop.clip, loop.travel_m);
-  measureSeam(skeleton, loop.clip, loop);
+  if (settings.in_place) {
+    removeTravel(loop.model, model_step, loop.clip, loop.travel_m);
+    lap.assign(lap.size(), glm::dvec3(0.0));
+  }
+  loop.in_place = settings.in_place;
+  measureSeam(skeleton, loop.clip, lap, loop);
   return loop;
 }
 

@@ -50,13 +50,15 @@ double runStyleDistance(const motion::Skeleton& skeleton, const motion::Clip& ru
                         const TargetMotion& target, double omega, double skip_s) {
   const double dt = run.frame_time;
   const double period = omega > 0.0 ? 2.0 * std::numbers::pi / omega : 0.0;
-  int first = std::clamp(static_cast<int>(std::ceil(skip_s / dt - 1e-9)), 0, run.frame_count - 1);
-  if (run.frame_count - first < 2) first = 0;
-  const double available = (run.frame_count - 1 - first) * dt;
+  const bool frames = run.frame_count >= 2 && dt > 0.0;  // else: still at the target's base
+  int first = frames ? std::clamp(static_cast<int>(std::ceil(skip_s / dt - 1e-9)), 0, run.frame_count - 1) : 0;
+  if (frames && run.frame_count - first < 2) first = 0;
+  const double available = frames ? (run.frame_count - 1 - first) * dt : 0.0;
   const int periods = period > 0.0 ? static_cast<int>(std::floor(available / period + 1e-9)) : 0;
   // Whole periods when there are any; otherwise what there is, counted as still.
-  const int count = periods > 0 ? std::max(1, static_cast<int>(std::lround(periods * period / dt)))
-                                : run.frame_count - first;
+  const int count = !frames     ? 0
+                    : periods > 0 ? std::max(1, static_cast<int>(std::lround(periods * period / dt)))
+                                  : run.frame_count - first;
   const std::vector<JointGroup> groups = jointGroups(skeleton);
   std::array<double, kJointGroupCount> squared{};
   std::array<int, kJointGroupCount> channels{};
@@ -72,7 +74,7 @@ double runStyleDistance(const motion::Skeleton& skeleton, const motion::Clip& ru
     }
     double mean = 0.0;
     for (int k = 0; k < count; ++k) mean += vectors[k][channel.axis];
-    mean /= count;
+    mean = count > 0 ? mean / count : 0.0;
     double distance = (mean - channel.mean) * (mean - channel.mean);
     for (const Harmonic& h : channel.terms) {
       double amplitude = 0.0;

@@ -53,15 +53,18 @@ struct PhysicalLoop {
   double run_start_s = 0.0;   // the fitted window's start in the run, seconds
   int window_strides = 0;     // whole strides the analysis chose for the window (<= strides)
   double seam_deg = 0.0;      // last frame to first: the largest joint rotation change
-  double seam_cm = 0.0;       // last frame to first (plus travel): the largest joint movement
+  double seam_cm = 0.0;       // last frame to first (each joint plus what it travels in a
+                              // lap): the largest joint movement
   double step_deg_max = 0.0;  // the same between consecutive frames inside the loop: what one
   double step_cm_max = 0.0;   // frame of motion moves
   double deviation_deg_rms = 0.0;  // loop against the raw run over the window, every joint
   double correction_deg_max = 0.0;  // the plant's largest change of a leg joint's rotation
   double ik_residual_cm_max = 0.0;  // the farthest a planted ankle stayed from its target
-  glm::dvec3 travel_m{0.0};   // root travel over the loop (zero in place)
+  glm::dvec3 travel_m{0.0};   // the pelvis's travel over the loop, world (zero in place)
+  bool in_place = false;
   std::vector<LoopContact> contacts;
-  // The loop played `laps` times in a row (>= 1), the root travelling on each lap.
+  // The loop played `laps` times in a row (>= 1), each lap travelled on by the model's trends
+  // (not in place).
   motion::Clip played(int laps) const;
   double slideBeforeMeanCm() const;
   double slideAfterMeanCm() const;

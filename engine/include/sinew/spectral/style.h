@@ -128,7 +128,8 @@ double styleAmount(const motion::Skeleton& skeleton, const TargetMotion& clip,
 // group (legs, arms, spine, head) the RMS over the group's channels of the distance between those
 // and the target's (means and amplitudes; phases left out, so a run late by a few frames is not a
 // different style), then the mean over the groups present. Radians. A run shorter than one period
-// after the skip counts as still (every amplitude 0, its mean pose over what there is).
+// after the skip counts as still (every amplitude 0, its mean pose over what there is; a run of
+// fewer than two frames, still at the target's base).
 double runStyleDistance(const motion::Skeleton& skeleton, const motion::Clip& run,
                         const TargetMotion& target, double omega, double skip_s);
 
