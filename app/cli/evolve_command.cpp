@@ -17,7 +17,9 @@
 #include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
+#include "sinew/pipeline/physical_loop.h"
 #include "sinew/pipeline/pipeline.h"
+#include "sinew/pipeline/run_style.h"
 #include "sinew/search/session.h"
 
 namespace sinew::app {
@@ -54,6 +56,10 @@ struct EvolveArgs {
   std::string terrain = "flat";
   std::vector<std::string> pushes;
   std::vector<std::string> weights;
+  double style_weight = 0.0;        // --style-weight: the style term's weight
+  std::vector<std::string> styles;  // --style NEUTRAL,STYLED[:WEIGHT]
+  int loop_strides = 2;             // 0: no loop
+  bool in_place = false;
   ImportFlags import;
   BodyFlags body;
   std::vector<std::string> given;  // the flags given ("--harmonics", ...)
@@ -63,11 +69,14 @@ struct EvolveArgs {
 };
 
 std::string termsLine(const search::FitnessTerms& t) {
-  char line[256];
+  char style[32] = "";
+  if (t.style > 0.0) std::snprintf(style, sizeof style, " style %.2f", t.style);
+  char line[288];
   std::snprintf(line, sizeof line,
                 "%.2f (fall %.1f track %.2f speed %.2f heading %.2f steps %.2f upright %.2f "
-                "energy %.2f) up %.1f s, %.1f m",
+                "energy %.2f%s) up %.1f s, %.1f m",
                 t.total, t.fall, t.tracking, t.speed, t.heading, t.placement, t.upright, t.energy,
+                style,
                 t.survived_s, t.distance_m);
   return t.fell && !t.fall_reason.empty() ? std::string(line) + " (fell: " + t.fall_reason + ")"
                                           : std::string(line);
@@ -91,10 +100,38 @@ Status applyWeightFlags(const std::vector<std::string>& flags, search::FitnessWe
     if (term < 0 || !(value >= 0.0))
       return Status::error("--weights '" + text +
                            "': expected TERM=VALUE >= 0, TERM one of fall, tracking, "
-                           "speed, heading, placement, upright, energy");
+                           "speed, heading, placement, upright, energy, style");
     search::fitnessWeight(weights, term) = value;
   }
   return Status();
+}
+
+// --style NEUTRAL,STYLED[:WEIGHT] (weight 1 when not given; label: the styled file's stem).
+Result<pipeline::StylePair> parseStyleFlag(const std::string& text) {
+  const std::string usage = "--style '" + text + "': expected NEUTRAL,STYLED[:WEIGHT]";
+  const size_t comma = text.find(',');
+  if (comma == std::string::npos || comma == 0 || comma + 1 == text.size()) return Status::error(usage);
+  pipeline::StylePair pair;
+  pair.neutral = text.substr(0, comma);
+  pair.styled = text.substr(comma + 1);
+  pair.weight = 1.0;
+  if (const size_t colon = pair.styled.rfind(':'); colon != std::string::npos) {
+    const std::string number = pair.styled.substr(colon + 1);
+    size_t used = 0;
+    double weight = 0.0;
+    try {
+      weight = std::stod(number, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != number.size() || !(weight >= -1.0 && weight <= 2.0))
+      return Status::error("--style '" + text + "': WEIGHT after ':' must be a number in [-1, 2]");
+    pair.weight = weight;
+    pair.styled = pair.styled.substr(0, colon);
+  }
+  if (pair.styled.empty() || pair.styled.find(',') != std::string::npos) return Status::error(usage);
+  pair.label = toUtf8(std::filesystem::path(pair.styled).stem().string());
+  return pair;
 }
 
 // The project (or --rig and the defaults), then the command line's own flags over it.
@@ -151,6 +188,12 @@ Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
                            own.hinge_limits.end());
   s.physics.body = std::move(body);
   if (Status w = applyWeightFlags(args.weights, s.search.weights); !w.ok()) return w;
+  if (args.has("--style-weight")) s.search.weights.style = args.style_weight;
+  for (const std::string& text : args.styles) {
+    Result<pipeline::StylePair> pair = parseStyleFlag(text);
+    if (!pair.ok()) return pair.status();
+    s.edits.styles.push_back(std::move(pair).value());
+  }
   return s;
 }
 
@@ -211,7 +254,8 @@ Result<std::unique_ptr<search::Session>> makeSession(const EvolveArgs& args,
     if (Status budget = session.setBudget(std::max(0, args.generations), args.minutes); !budget.ok())
       return budget;
   }
-  if (!args.weights.empty()) session.setWeights(chosen.search.weights);  // from the next generation
+  if (!args.weights.empty() || args.has("--style-weight"))
+    session.setWeights(chosen.search.weights);  // from the next generation
   if (session.finished())
     return Status::error(args.resume + ": the search's budget (" +
                          std::to_string(session.settings().generations) + " generations, " +
@@ -297,6 +341,46 @@ bool runWithProgress(search::Session& session) {
   return interrupted;
 }
 
+// The best run's style against the styles the search was given: printed, and style.json in `out`.
+Status reportStyle(const search::Problem& problem, const pipeline::BestReplay& best,
+                   const pipeline::MotionEdits& edits, const std::filesystem::path& out) {
+  if (edits.styles.empty()) return Status();
+  Result<pipeline::RunStyleReport> report = pipeline::measureRunStyle(
+      problem.skeleton, problem.seed, best.run.motion, best.stride_s, best.stride_s, edits);
+  if (!report.ok()) return report.status();
+  for (const std::string& line : report.value().lines()) std::printf("style %s\n", line.c_str());
+  return writeFileAtomically(out / "style.json", report.value().json().dump(2) + "\n");
+}
+
+// The best run as a seamless loop with planted feet (pipeline::writeLoopFiles), and a line
+// saying what it is. A run that gives no loop (it fell in its first strides) is said on stderr,
+// not a failure of the search. Returns whether the loop was written.
+Result<bool> writeLoop(const search::Problem& problem, const pipeline::BestReplay& best,
+                       const EvolveArgs& args, const pipeline::MotionEdits& edits,
+                       const motion::MotionAsset& rig) {
+  if (args.loop_strides == 0) return false;
+  pipeline::LoopSettings settings;
+  settings.strides = args.loop_strides;
+  settings.in_place = args.in_place;
+  Result<pipeline::LoopFiles> loop =
+      pipeline::writeLoopFiles(problem, best, edits, rig, settings, args.out);
+  if (!loop.ok() && loop.message().rfind("loop: ", 0) == 0) {
+    std::fprintf(stderr, "sinew: warning: no best_loop: %s\n", loop.message().c_str());
+    return false;
+  }
+  if (!loop.ok()) return loop.status();
+  const pipeline::PhysicalLoop& l = loop.value().loop;
+  for (const std::string& line : loop.value().style.lines()) std::printf("loop style %s\n", line.c_str());
+  std::printf(
+      "loop: %d strides of %.3f s from %.2f s of the run, %d frames; seam %.2f deg %.2f cm (one "
+      "frame moves up to %.2f deg %.2f cm); foot slide %.2f -> %.2f cm mean per contact (%zu "
+      "contacts, plant up to %.1f deg); %.1f deg RMS from the run\n",
+      l.strides, l.period_s, l.run_start_s, l.clip.frame_count, l.seam_deg, l.seam_cm,
+      l.step_deg_max, l.step_cm_max, l.slideBeforeMeanCm(), l.slideAfterMeanCm(),
+      l.contacts.size(), l.correction_deg_max, l.deviation_deg_rms);
+  return true;
+}
+
 int runEvolve(const EvolveArgs& args) {
   // Settings: the checkpoint's (a resumed search), or the project's with the flags over them.
   nlohmann::json checkpoint;
@@ -313,6 +397,7 @@ int runEvolve(const EvolveArgs& args) {
     if (chosen.ok()) {
       if (Status w = applyWeightFlags(args.weights, chosen.value().search.weights); !w.ok())
         return fail(w.message());
+      if (args.has("--style-weight")) chosen.value().search.weights.style = args.style_weight;
     }
   } else {
     chosen = chosenSettings(args);
@@ -348,8 +433,14 @@ int runEvolve(const EvolveArgs& args) {
   }
   std::printf("best after %d generations (%lld evaluations): %s\n", snap->generation,
               snap->evaluations, termsLine(snap->best_terms).c_str());
-  std::printf("wrote %s: best.bvh, best.glb, best.json, history.csv, checkpoint.json\n",
-              args.out.c_str());
+  const pipeline::BestReplay best = pipeline::replayBest(session.problem(), snap->best_point);
+  if (Status s = reportStyle(session.problem(), best, settings.edits, out); !s.ok())
+    return fail(s.message());
+  Result<bool> looped = writeLoop(session.problem(), best, args, settings.edits, rig.asset);
+  if (!looped.ok()) return fail(looped.message());
+  std::printf("wrote %s: best.bvh, best.glb, best.json, history.csv, checkpoint.json%s%s\n",
+              args.out.c_str(), settings.edits.styles.empty() ? "" : ", style.json",
+              looped.value() ? ", best_loop.bvh, best_loop.glb, loop.json" : "");
   return interrupted ? 130 : 0;
 }
 
@@ -421,8 +512,25 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command
       ->add_option("--weights", args->weights,
                    "Fitness weights TERM=VALUE (fall, tracking, speed, heading, placement, "
-                   "upright, energy); repeatable")
+                   "upright, energy, style); repeatable")
       ->delimiter(',');
+  command
+      ->add_option("--style-weight", args->style_weight,
+                   "Weight of the style term: the run's harmonic spectrum against the target's, "
+                   "per joint group, per radian (default 0: not measured)")
+      ->check(CLI::Range(0.0, 1000.0));
+  command->add_option("--style", args->styles,
+                      "Evolve toward the motion with a style: NEUTRAL,STYLED[:WEIGHT] (clips of the "
+                      "rig's skeleton; weight in [-1, 2], default 1, 0 = the original); repeatable, "
+                      "added to the project's styles");
+  command
+      ->add_option("--loop-strides", args->loop_strides,
+                   "Whole strides in best_loop.bvh/.glb, the best run as a seamless loop with "
+                   "planted feet (default 2; 0: no loop)")
+      ->check(wholeNumber())
+      ->check(CLI::Range(0, 16));
+  command->add_flag("--in-place", args->in_place,
+                    "The loop's root stays in place (its horizontal travel removed)");
   command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
   command->add_option("--out", args->out, "Output folder")->required();
   args->import.addTo(*command);
@@ -430,14 +538,19 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command->callback([args, command, &exit_code]() {
     for (const char* flag : {"--harmonics", "--terrain", "--window", "--population", "--optimizer",
                              "--seed", "--no-prior", "--trials", "--trial-push",
-                             "--restart-after"})
+                             "--restart-after", "--style-weight"})
       if (command->count(flag) > 0) args->given.emplace_back(flag);
     if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");
-    else if (!args->resume.empty() && (!args->clip.empty() || !args->target_path.empty()))
+    else if (!args->resume.empty() &&
+             (!args->clip.empty() || !args->target_path.empty() || !args->styles.empty()))
       exit_code = fail(
-          "--resume continues the search as it was: the rig, clip, window and "
+          "--resume continues the search as it was: the rig, clip, styles, window and "
           "terrain come from the checkpoint");
+    else if (!args->target_path.empty() && !args->styles.empty())
+      exit_code = fail(
+          "--style edits the clip's harmonic model; a --target file is tracked as it is (apply "
+          "the style with sinew style -o X.json, or drop --target)");
     else
       exit_code = runEvolve(*args);
   });

@@ -250,6 +250,7 @@ bool exportChosen(EditorState& state) {
   if (e.folder.empty()) e.folder = state.file_path.parent_path().string();
   if (e.simulated) {
     state.evolution.export_dir = e.folder;
+    if (e.loop) return exportEvolutionLoop(state, e.loop_strides, e.in_place);
     return exportEvolutionBest(state);
   }
   if (e.name.empty()) e.name = clip->name + "_model";

@@ -91,6 +91,9 @@ struct ExportSettings {
   int strides = 4;
   bool bvh = true, gltf = true, coefficients = true;
   bool simulated = false;  // the fittest simulated run instead of the kinematic target
+  bool loop = false;       // with `simulated`: the run as a seamless loop, feet planted
+  int loop_strides = 2;    // whole strides in the loop, 1..16
+  bool in_place = false;   // the loop's root without its travel
 };
 inline constexpr int kMaxRecentFiles = 10;
 

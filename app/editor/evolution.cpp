@@ -6,6 +6,7 @@
 
 #include "editor/editor_state.h"
 #include "editor/project_model.h"
+#include "sinew/pipeline/physical_loop.h"
 #include "sinew/pipeline/pipeline.h"
 #include "sinew/search/controller_io.h"
 
@@ -155,6 +156,35 @@ bool exportEvolutionBest(EditorState& state) {
     return false;
   }
   state.log.info("export: wrote best.json, best.bvh and best.glb to " + evolution.export_dir);
+  return true;
+}
+
+bool exportEvolutionLoop(EditorState& state, int strides, bool in_place) {
+  EvolutionState& evolution = state.evolution;
+  if (!evolution.session || !evolution.snapshot || evolution.snapshot->best_point.empty()) {
+    state.log.error("export: no generation has finished yet");
+    return false;
+  }
+  pipeline::LoopSettings settings;
+  settings.strides = strides;
+  settings.in_place = in_place;
+  const search::Problem& problem = evolution.session->problem();
+  Result<pipeline::LoopFiles> files = pipeline::writeLoopFiles(
+      problem, pipeline::replayBest(problem, evolution.snapshot->best_point),
+      evolution.started.edits, *state.asset, settings, evolution.export_dir);
+  if (!files.ok()) {
+    state.log.error("export: " + files.message());
+    return false;
+  }
+  const pipeline::PhysicalLoop& loop = files.value().loop;
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "export: wrote best_loop.bvh, best_loop.glb and loop.json to %s: %d strides of "
+                "%.3f s, foot slide %.2f -> %.2f cm per contact",
+                evolution.export_dir.c_str(), loop.strides, loop.period_s,
+                loop.slideBeforeMeanCm(), loop.slideAfterMeanCm());
+  state.log.info(line);
+  for (const std::string& style : files.value().style.lines()) state.log.info("loop style " + style);
   return true;
 }
 

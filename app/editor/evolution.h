@@ -51,6 +51,10 @@ void setEvolutionWeights(EditorState& state);
 void pollEvolution(EditorState& state);
 // Writes best.json, best.bvh and best.glb of the best so far into evolution.export_dir.
 bool exportEvolutionBest(EditorState& state);
+// Writes the best so far as a loop (best_loop.bvh, best_loop.glb, loop.json: what `sinew evolve
+// --loop-strides N [--in-place]` writes) into evolution.export_dir; logs the loop's figures, or
+// why there is none (a run that fell in its first strides).
+bool exportEvolutionLoop(EditorState& state, int strides, bool in_place);
 // Writes what `sinew evolve PROJECT --out DIR` writes (checkpoint.json, history.csv, best.*).
 bool exportEvolutionResults(EditorState& state, const std::filesystem::path& dir);
 // The running search's state (kReady when there is none).

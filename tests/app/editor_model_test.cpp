@@ -6,6 +6,7 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "editor/camera.h"
 #include "editor/editor_state.h"
@@ -439,6 +440,35 @@ TEST_F(EditorModelTest, ExportWritesTheModelThatReimportsAndReloads) {
   state.exporting.simulated = true;
   EXPECT_FALSE(editor::exportChosen(state));
   EXPECT_NE(state.log.lines().back().text.find("no generation has finished"), std::string::npos);
+  state.exporting.loop = true;  // and its loop
+  EXPECT_FALSE(editor::exportChosen(state));
+  EXPECT_NE(state.log.lines().back().text.find("no generation has finished"), std::string::npos);
+}
+
+TEST_F(EditorModelTest, ExportWritesTheFittestRunAsALoopInPlace) {
+  editor::EvolutionSettings& settings = state.evolution.settings;
+  settings.physics.window_s = 4.5;  // a first stride to settle and two for the loop
+  settings.search.population = 6;
+  ASSERT_TRUE(editor::startEvolution(state, 2));
+  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    editor::pollEvolution(state);
+  }
+  editor::pollEvolution(state);
+  ASSERT_TRUE(state.evolution.snapshot && !state.evolution.snapshot->best_point.empty());
+  test::TempDir dir;
+  state.exporting.folder = (dir / "out").string();
+  state.exporting.simulated = true;
+  state.exporting.loop = true;
+  state.exporting.in_place = true;
+  ASSERT_TRUE(editor::exportChosen(state)) << state.log.lines().back().text;
+  EXPECT_NE(state.log.lines().back().text.find("best_loop.bvh"), std::string::npos);
+  const nlohmann::json loop = nlohmann::json::parse(test::readText(dir / "out" / "loop.json"));
+  EXPECT_TRUE(loop["in_place"].get<bool>());
+  EXPECT_EQ(loop["strides"].get<int>(), 2);
+  Result<motion::MotionAsset> back = motion::importMotion(dir / "out" / "best_loop.glb");
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_EQ(back.value().clips.front().frame_count, loop["frames"].get<int>());
 }
 
 TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {

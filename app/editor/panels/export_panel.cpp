@@ -1,6 +1,6 @@
 // Export: the kinematic target (the model with its K per joint, sampled at a chosen rate for whole
 // strides, as BVH, glTF and coefficients JSON) or the fittest simulated run of the search (BVH,
-// glTF and its controller file). Every file written, or why not, goes to the Log.
+// glTF and its controller file), raw or as a seamless loop with planted feet. Every file written, or why not, goes to the Log.
 #include <algorithm>
 
 #include <imgui.h>
@@ -50,7 +50,20 @@ void drawExportPanel(EditorState& state) {
     ImGui::SameLine();
     ImGui::Checkbox("coefficients (.json)", &e.coefficients);
   } else {
-    ImGui::TextDisabled("best.bvh, best.glb and best.json (replay: sinew simulate --controller)");
+    if (ImGui::RadioButton("the raw run", !e.loop)) e.loop = false;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("a loop of it", e.loop)) e.loop = true;
+    if (e.loop) {
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(60.0f);
+      ImGui::DragInt("strides", &e.loop_strides, 0.1f, 1, 16);
+      e.loop_strides = std::clamp(e.loop_strides, 1, 16);
+      ImGui::SameLine();
+      ImGui::Checkbox("in place", &e.in_place);
+      ImGui::TextDisabled("best_loop.bvh, best_loop.glb and loop.json (seam, foot slide, style)");
+    } else {
+      ImGui::TextDisabled("best.bvh, best.glb and best.json (replay: sinew simulate --controller)");
+    }
   }
   if (ImGui::Button("Export", ImVec2(100.0f, 0.0f))) exportChosen(state);
   ImGui::End();

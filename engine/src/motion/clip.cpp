@@ -48,6 +48,25 @@ int frameCountFor(double duration, double frame_time) {
   return static_cast<int>(std::min(std::floor(duration / frame_time + 1e-3) + 1.0, 2e9));
 }
 
+Clip clipFrames(const Clip& clip, int first, int count) {
+  if (clip.frame_count < 1) return clip;
+  first = std::clamp(first, 0, std::max(0, clip.frame_count - 1));
+  count = std::clamp(count, 1, clip.frame_count - first);
+  Clip out;
+  out.name = clip.name;
+  out.frame_time = clip.frame_time;
+  out.frame_count = count;
+  out.joint_count = clip.joint_count;
+  const auto begin = static_cast<ptrdiff_t>(first) * clip.joint_count;
+  const auto end = begin + static_cast<ptrdiff_t>(count) * clip.joint_count;
+  out.rotations.assign(clip.rotations.begin() + begin, clip.rotations.begin() + end);
+  out.translations.assign(clip.translations.begin() + begin, clip.translations.begin() + end);
+  if (!clip.scales.empty()) out.scales.assign(clip.scales.begin() + begin, clip.scales.begin() + end);
+  if (first == 0) out.euler_start = clip.euler_start;
+  out.euler_range = clip.euler_range;
+  return out;
+}
+
 Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time) {
   Clip clip;
   clip.name = "rest";

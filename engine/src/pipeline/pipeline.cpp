@@ -26,10 +26,19 @@ Result<std::vector<int>> resolveJointK(const motion::Skeleton& skeleton, int har
   return k;
 }
 
+spectral::CycleSettings strideNear(double stride_s) {
+  spectral::CycleSettings cycle;
+  cycle.min_period_s = 0.75 * stride_s;
+  cycle.max_period_s = 1.25 * stride_s;
+  return cycle;
+}
+
 Result<spectral::TargetMotion> styleTarget(const motion::Skeleton& skeleton,
-                                           const motion::Clip& clip, const std::string& name) {
+                                           const motion::Clip& clip, const std::string& name,
+                                           double stride_hint_s) {
   spectral::AnalysisSettings settings;
   settings.harmonics = kStyleHarmonics;
+  if (stride_hint_s > 0.0) settings.cycle = strideNear(stride_hint_s);
   Result<spectral::MotionSpectrum> spectrum = spectral::analyze(skeleton, clip, settings);
   if (!spectrum.ok()) return Status::error(name + ": " + spectrum.message());
   return spectral::targetFromSpectrum(spectrum.value(), {}, clip.name);

@@ -12,6 +12,7 @@
 #include "sinew/core/assert.h"
 #include "sinew/physics/tracking.h"
 #include "sinew/search/random.h"
+#include "sinew/spectral/style.h"
 
 namespace sinew::search {
 namespace {
@@ -212,22 +213,22 @@ std::vector<double> GenomeLayout::encode(const spectral::TargetMotion& target,
 }
 
 Status FitnessWeights::validate() const {
-  for (double w : {fall, tracking, speed, heading, placement, upright, energy})
+  for (double w : {fall, tracking, speed, heading, placement, upright, energy, style})
     if (!(std::isfinite(w) && w >= 0.0))
       return Status::error("fitness weights (fall, tracking, speed, heading, placement, upright, "
-                           "energy) must be finite and >= 0");
+                           "energy, style) must be finite and >= 0");
   return Status();
 }
 
 double& fitnessWeight(FitnessWeights& w, int term) {
-  double* weights[kFitnessTermCount] = {&w.fall,      &w.tracking, &w.speed, &w.heading,
-                                        &w.placement, &w.upright,  &w.energy};
+  double* weights[kFitnessTermCount] = {&w.fall,      &w.tracking, &w.speed,  &w.heading,
+                                        &w.placement, &w.upright,  &w.energy, &w.style};
   return *weights[std::clamp(term, 0, kFitnessTermCount - 1)];
 }
 
 const char* fitnessTermName(int term) {
-  static const char* const names[kFitnessTermCount] = {"fall",      "tracking", "speed", "heading",
-                                                       "placement", "upright",  "energy"};
+  static const char* const names[kFitnessTermCount] = {
+      "fall", "tracking", "speed", "heading", "placement", "upright", "energy", "style"};
   return term >= 0 && term < kFitnessTermCount ? names[term] : "";
 }
 
@@ -247,6 +248,8 @@ double fitnessTerm(const FitnessTerms& t, int term) {
       return t.upright;
     case 6:
       return t.energy;
+    case 7:
+      return t.style;
     default:
       return 0.0;
   }
@@ -267,8 +270,8 @@ nlohmann::json fitnessJson(const FitnessTerms& t) {
 
 Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j) {
   FitnessTerms t;
-  double* terms[kFitnessTermCount] = {&t.fall,      &t.tracking, &t.speed, &t.heading,
-                                      &t.placement, &t.upright,  &t.energy};
+  double* terms[kFitnessTermCount] = {&t.fall,      &t.tracking, &t.speed,  &t.heading,
+                                      &t.placement, &t.upright,  &t.energy, &t.style};
   const auto number = [&j](const char* key, double& out) -> Status {
     if (!j.is_object() || !j.contains(key) || !j.at(key).is_number() ||
         !std::isfinite(j.at(key).get<double>()))
@@ -276,8 +279,10 @@ Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j) {
     out = j.at(key).get<double>();
     return {};
   };
-  for (int k = 0; k < kFitnessTermCount; ++k)
+  for (int k = 0; k < kFitnessTermCount; ++k) {
+    if (k == 7 && j.is_object() && !j.contains("style")) continue;  // from before the term
     if (Status s = number(fitnessTermName(k), *terms[k]); !s.ok()) return s;
+  }
   const char* keys[5] = {"total", "survived_s", "distance_m", "speed_m_s", "track_err_rad_rms"};
   double* values[5] = {&t.total, &t.survived_s, &t.distance_m, &t.speed_m_s, &t.track_err_rad_rms};
   for (int k = 0; k < 5; ++k)
@@ -311,7 +316,7 @@ Result<Problem> Problem::create(const physics::BodyPlan& plan, const motion::Ske
   return p;
 }
 
-FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& r) {
+FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& r, double omega) {
   const FitnessWeights& w = problem.weights;
   const double window = problem.simulation.seconds;
   FitnessTerms t;
@@ -344,7 +349,14 @@ FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& r
   t.placement = w.placement * std::abs(step - problem.reference_step_m);
   t.upright = w.upright * (1.0 - r.min_uprightness);
   t.energy = w.energy * r.torque_sq_per_kg / std::max(r.seconds, 1e-3);
-  t.total = t.fall + t.tracking + t.speed + t.heading + t.placement + t.upright + t.energy;
+  if (w.style > 0.0 && r.motion.frame_count > 1) {
+    // The run's spectrum at its own stride, after the first (settling) stride.
+    const double stride = omega > 0.0 ? omega : problem.seed.omega0;
+    t.style = w.style * spectral::runStyleDistance(problem.skeleton, r.motion, problem.seed, stride,
+                                                   2.0 * kPi / stride);
+  }
+  t.total =
+      t.fall + t.tracking + t.speed + t.heading + t.placement + t.upright + t.energy + t.style;
   return t;
 }
 
@@ -381,7 +393,7 @@ Evaluation runOnce(const Problem& problem, const spectral::TargetMotion& target,
   }
   e.report = std::move(run).value();
   e.cancelled = e.report.cancelled;
-  e.terms = scoreRun(problem, e.report);
+  e.terms = scoreRun(problem, e.report, target.omega0);
   if (e.report.diverged) {
     e.terms.diverged = true;
     e.terms.total = std::numeric_limits<double>::infinity();
@@ -393,7 +405,7 @@ Evaluation runOnce(const Problem& problem, const spectral::TargetMotion& target,
 constexpr double FitnessTerms::*kWeightedTerms[] = {
     &FitnessTerms::fall,      &FitnessTerms::tracking, &FitnessTerms::speed,
     &FitnessTerms::heading,   &FitnessTerms::placement, &FitnessTerms::upright,
-    &FitnessTerms::energy,    &FitnessTerms::total};
+    &FitnessTerms::energy,    &FitnessTerms::style,    &FitnessTerms::total};
 
 }  // namespace
 
@@ -403,14 +415,15 @@ Evaluation evaluate(const Problem& problem, std::span<const double> x,
   settings.tracking.balance = problem.layout.decodeGains(x);
   settings.cancel = cancel;
   settings.reference = &problem.seed;  // the style to keep, whatever the genome tracks
-  if (!record) settings.record_fps = std::min(settings.record_fps, 5.0);
+  const bool measure_style = problem.weights.style > 0.0;  // needs the motion at 30 fps
+  if (!record && !measure_style) settings.record_fps = std::min(settings.record_fps, 5.0);
   const spectral::TargetMotion target = problem.layout.decodeTarget(x);
   Evaluation e = runOnce(problem, target, settings);
   if (!record) e.report.motion = {};
   if (problem.trial_pushes.empty() || e.terms.diverged || e.cancelled) return e;
   // Robustness trials: the cost is the mean over the nominal run and each pushed one.
   FitnessTerms sum = e.terms;
-  settings.record_fps = std::min(settings.record_fps, 5.0);
+  if (!measure_style) settings.record_fps = std::min(settings.record_fps, 5.0);
   for (const physics::Push& push : problem.trial_pushes) {
     physics::SimulationSettings pushed = settings;
     pushed.pushes.push_back(push);

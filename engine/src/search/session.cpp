@@ -43,7 +43,7 @@ Result<TermStats> statsFromJson(const nlohmann::json& j, const std::string& wher
 nlohmann::json weightsJson(const FitnessWeights& w) {
   return {{"fall", w.fall},       {"tracking", w.tracking},   {"speed", w.speed},
           {"heading", w.heading}, {"placement", w.placement}, {"upright", w.upright},
-          {"energy", w.energy}};
+          {"energy", w.energy},   {"style", w.style}};
 }
 
 // Linux keeps a niceness per thread, inherited by the threads it creates.
@@ -174,7 +174,7 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     problem.weights = {w.at("fall").get<double>(),      w.at("tracking").get<double>(),
                        w.at("speed").get<double>(),     w.at("heading").get<double>(),
                        w.at("placement").get<double>(), w.at("upright").get<double>(),
-                       w.at("energy").get<double>()};
+                       w.at("energy").get<double>(),    w.value("style", 0.0)};  // absent before the style term
     std::unique_ptr<Session> session(new Session(std::move(problem), settings));
     Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
     if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());
@@ -191,6 +191,8 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
       if (!total.ok()) return total.status();
       r.total = total.value();
       for (int k = 0; k < kFitnessTermCount; ++k) {
+        if (!h.contains(fitnessTermName(k)) && std::string(fitnessTermName(k)) == "style")
+          continue;  // a checkpoint from before the style term: it was 0
         Result<TermStats> term =
             statsFromJson(h.at(fitnessTermName(k)), where + fitnessTermName(k));
         if (!term.ok()) return term.status();

@@ -70,18 +70,9 @@ std::pair<int, int> frameRange(const MotionSignals& signals, const AnalysisWindo
   return {first, std::max(first, last)};
 }
 
-motion::Clip clipFrames(const motion::Clip& clip, int first, int last) {
-  motion::Clip out;
-  out.name = clip.name;
-  out.frame_time = clip.frame_time;
-  out.frame_count = last - first + 1;
-  out.joint_count = clip.joint_count;
-  const auto begin = static_cast<size_t>(first) * clip.joint_count;
-  const auto end = static_cast<size_t>(last + 1) * clip.joint_count;
-  out.rotations.assign(clip.rotations.begin() + begin, clip.rotations.begin() + end);
-  out.translations.assign(clip.translations.begin() + begin, clip.translations.begin() + end);
-  if (!clip.scales.empty()) out.scales.assign(clip.scales.begin() + begin, clip.scales.begin() + end);
-  return out;
+// Frames first..last inclusive.
+motion::Clip clipRange(const motion::Clip& clip, int first, int last) {
+  return motion::clipFrames(clip, first, last - first + 1);
 }
 
 // The model's pose at frames first..last of the clip (t from start_s): mean pose, the channels'
@@ -508,7 +499,7 @@ Result<MotionSpectrum> analyze(const motion::Skeleton& skeleton, const motion::C
       count = spectrum.coefficientCount();
     } else {
       const auto [first, last] = frameRange(signals, trial.window, trial.period_s);
-      error = positionError(skeleton, clipFrames(clip, first, last),
+      error = positionError(skeleton, clipRange(clip, first, last),
                             modelFromBins(skeleton, signals, trial, settings.harmonics));
     }
     const bool better =
@@ -551,7 +542,7 @@ std::pair<int, int> windowFrameRange(const MotionSpectrum& spectrum) {
 
 motion::Clip windowFrames(const motion::Clip& clip, const MotionSpectrum& spectrum) {
   const auto [first, last] = windowFrameRange(spectrum);
-  return clipFrames(clip, first, last);
+  return clipRange(clip, first, last);
 }
 
 motion::Clip reconstruct(const motion::Skeleton& skeleton, const MotionSpectrum& spectrum,

@@ -52,6 +52,10 @@ struct Clip {
 // and glTF stores key times as floats, and neither should lose the last frame to rounding.
 int frameCountFor(double duration, double frame_time);
 
+// Frames [first, first + count) of `clip` (clamped to the clip, at least one frame), as a clip of
+// their own with the same frame time; the BVH Euler start is kept only when first is 0.
+Clip clipFrames(const Clip& clip, int first, int count);
+
 // A clip of `frame_count` frames holding the skeleton's rest pose.
 Clip restClip(const Skeleton& skeleton, int frame_count, double frame_time);
 

@@ -24,6 +24,7 @@
 #include "sinew/search/controller_io.h"
 #include "sinew/search/problem.h"
 #include "sinew/search/session.h"
+#include "sinew/spectral/cycle.h"
 #include "sinew/spectral/style.h"
 #include "sinew/spectral/target_motion.h"
 
@@ -39,8 +40,13 @@ Result<std::vector<int>> resolveJointK(const motion::Skeleton& skeleton, int har
 // Harmonics per joint with which style clips are analysed (as `sinew style` does).
 inline constexpr int kStyleHarmonics = 10;
 // A clip analysed for style work (kStyleHarmonics per joint); `name` starts messages.
+// `stride_hint_s` > 0: the stride is looked for within 25% of it (a simulated run, whose
+// controller's stride is known; its strides vary, and twice the stride can repeat better).
 Result<spectral::TargetMotion> styleTarget(const motion::Skeleton& skeleton,
-                                           const motion::Clip& clip, const std::string& name);
+                                           const motion::Clip& clip, const std::string& name,
+                                           double stride_hint_s = 0.0);
+// Stride bounds within 25% of a known stride, seconds (> 0).
+spectral::CycleSettings strideNear(double stride_s);
 // The same for a clip file, whose skeleton must be `skeleton`'s (same joint names), or the
 // message says so, naming the file.
 Result<spectral::TargetMotion> styleClipTarget(const std::string& path,

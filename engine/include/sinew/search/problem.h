@@ -94,6 +94,9 @@ struct FitnessWeights {
   double placement = 2.0;   // per metre between the mean step length and the reference's
   double upright = 2.0;     // per unit of (1 - lowest cosine of the pelvis's tilt)
   double energy = 0.002;    // per (N^2 m^2 s / kg) / s of squared torque
+  double style = 0.0;       // per radian of style distance in harmonic space between the run and
+                            // the seed target (spectral::runStyleDistance); 0: not measured (above
+                            // 0 every evaluation records its motion at 30 fps to measure it)
   Status validate() const;  // the message names the offending field
   bool operator==(const FitnessWeights&) const = default;
 };
@@ -104,7 +107,7 @@ double& fitnessWeight(FitnessWeights& weights, int term);
 // One evaluation's terms (already weighted) and raw figures.
 struct FitnessTerms {
   double fall = 0.0, tracking = 0.0, speed = 0.0, heading = 0.0, placement = 0.0, upright = 0.0,
-         energy = 0.0;
+         energy = 0.0, style = 0.0;
   double total = 0.0;
   double survived_s = 0.0;  // seconds before the fall (the window when it did not fall)
   double distance_m = 0.0;
@@ -115,11 +118,12 @@ struct FitnessTerms {
   bool diverged = false;  // the simulation diverged (or could not run): total is +inf, a
                           // failure the optimisers rank last; never written as a number
 };
-inline constexpr int kFitnessTermCount = 7;
+inline constexpr int kFitnessTermCount = 8;
 const char* fitnessTermName(int term);            // "fall", "tracking", ...
 double fitnessTerm(const FitnessTerms& t, int term);
 // {"fall": ..., ..., "total", "survived_s", "distance_m", "speed_m_s", "track_err_rad_rms",
-// "fell", and "fall_reason" when it fell}: as checkpoints and best.json carry them.
+// "fell", and "fall_reason" when it fell}: as checkpoints and best.json carry them. Reading, a
+// missing "style" is 0 (files from before the term).
 nlohmann::json fitnessJson(const FitnessTerms& t);
 Result<FitnessTerms> fitnessFromJson(const nlohmann::json& j);
 
@@ -161,8 +165,11 @@ struct Evaluation {
 };
 Evaluation evaluate(const Problem& problem, std::span<const double> x,
                     const std::atomic<bool>* cancel = nullptr, bool record = false);
-// The fitness of a simulation report against the problem's references.
-FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& report);
+// The fitness of a simulation report against the problem's references. `omega` (rad/s) is the
+// stride frequency the controller ran at, where the style term measures the run's spectrum
+// (0: the seed's).
+FitnessTerms scoreRun(const Problem& problem, const physics::SimulationReport& report,
+                      double omega = 0.0);
 
 // A generation on `threads` workers (each evaluation builds its own world, so the results do not
 // depend on the thread count). Results in the points' order.

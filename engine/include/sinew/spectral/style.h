@@ -114,4 +114,23 @@ Result<StyleScores> scoreStyleRelative(const motion::Skeleton& skeleton, const T
                                        const TargetMotion& neutral,
                                        const std::vector<StyleExample>& library);
 
+// How much of a pair's style `clip` carries: the projection of clip's style relative to `neutral`
+// (relativeStyle) on the pair's (`styled` against `neutral`), each part scaled as
+// scoreStyleRelative scales it. 0: the neutral's, 1: the styled clip's, > 1 exaggerated, < 0
+// the opposite way. A pair with no difference gives 0.
+double styleAmount(const motion::Skeleton& skeleton, const TargetMotion& clip,
+                   const TargetMotion& neutral, const TargetMotion& styled);
+
+// Style distance in harmonic space between a recorded run and the target it tracked: each of the
+// target's rotation channels is measured in the run (the joint's rotation relative to the
+// target's base, as a rotation vector) over the whole periods of `omega` (rad/s, > 0) after
+// `skip_s` seconds: its mean and the amplitude of each of the channel's harmonics. Per joint
+// group (legs, arms, spine, head) the RMS over the group's channels of the distance between those
+// and the target's (means and amplitudes; phases left out, so a run late by a few frames is not a
+// different style), then the mean over the groups present. Radians. A run shorter than one period
+// after the skip counts as still (every amplitude 0, its mean pose over what there is; a run of
+// fewer than two frames, still at the target's base).
+double runStyleDistance(const motion::Skeleton& skeleton, const motion::Clip& run,
+                        const TargetMotion& target, double omega, double skip_s);
+
 }  // namespace sinew::spectral
