@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "cli/controller_file.h"
 #include "sinew/core/file_io.h"
+#include "sinew/core/path_json.h"
 #include "sinew/core/text.h"
 #include "sinew/physics/body_plan.h"
 #include "sinew/physics/simulation.h"
@@ -93,6 +94,20 @@ Result<pipeline::ProjectSettings> settingsFromFlags(const SimulateArgs& args) {
   if (!body.ok()) return body.status();
   chosen.physics.body = std::move(body).value();
   return chosen;
+}
+
+// The rig an evolved controller was made on (its "rig", bytes as written): what --controller
+// replays on when --rig is not given.
+Result<std::string> controllerRig(const std::string& path) {
+  Result<std::string> text = readFile(path);
+  if (!text.ok()) return text.status();
+  const nlohmann::json document = nlohmann::json::parse(text.value(), nullptr, false);
+  if (document.is_discarded() || !document.is_object())
+    return Status::error(path + ": not a JSON object (a best.json from sinew evolve?)");
+  std::string rig;
+  if (Status s = readPathJson(document, "rig", rig, path + ": "); !s.ok()) return s;
+  if (rig.empty()) return Status::error(path + ": rig: missing; give --rig");
+  return rig;
 }
 
 // --balance CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO into the gains.
@@ -214,7 +229,8 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
       "Make the rig's physical character track a clip's harmonic model with joint "
       "torques; report falls, distance, tracking error and energy");
   command->add_option("--rig", args->rig,
-                      "The rig (.bvh, .glb, .gltf); default: the bundled biped");
+                      "The rig (.bvh, .glb, .gltf); default: the controller's own rig with "
+                      "--controller, else the bundled biped");
   command->add_option("--clip", args->clip,
                       "The motion to track (same skeleton); default: the rig's own");
   command->add_option("--target", args->target_path,
@@ -249,6 +265,14 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
   args->import.addTo(*command);
   args->body.addTo(*command);
   command->callback([args, &exit_code]() {
+    if (args->rig.empty() && !args->controller_path.empty()) {
+      Result<std::string> rig = controllerRig(args->controller_path);
+      if (!rig.ok()) {
+        exit_code = fail(rig.message());
+        return;
+      }
+      args->rig = rig.value();
+    }
     if (args->rig.empty()) args->rig = SINEW_ASSET_DIR "/biped_walk.bvh";
     exit_code = runSimulate(*args);
   });

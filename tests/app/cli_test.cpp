@@ -460,6 +460,29 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   EXPECT_NE(garbage_json.err.find("history.csv"), std::string::npos) << garbage_json.err;
 }
 
+// A controller replays on the rig it was evolved for without --rig (best.json names it).
+TEST(CliTest, SimulateControllerDefaultsToTheControllersRig) {
+  test::TempDir dir;
+  const auto out = dir / "hop";
+  const std::string rig = (test::sourceDir() / "assets" / "hopper_hop.bvh").string();
+  const test::CommandResult run = test::runSinew(
+      "evolve --rig " + test::quote(rig) +
+      " --generations 1 --population 4 --window 1 --threads 2 --out " + test::quote(out));
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  const test::CommandResult replay =
+      test::runSinew("simulate --controller " + test::quote(out / "best.json") + " --seconds 1");
+  ASSERT_EQ(replay.exit_code, 0) << replay.err << replay.out;
+  EXPECT_NE(replay.out.find("hopper_hop.bvh"), std::string::npos) << replay.out;
+  nlohmann::json broken = nlohmann::json::parse(test::readText(out / "best.json"));
+  broken.erase("rig");
+  test::writeText(dir / "norig.json", broken.dump());
+  const test::CommandResult missing =
+      test::runSinew("simulate --controller " + test::quote(dir / "norig.json"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("norig.json: rig: missing; give --rig"), std::string::npos)
+      << missing.err;
+}
+
 // A project names the rig and the search's settings in one file; broken projects are refused
 // naming the file and the field.
 TEST(CliTest, EvolveReadsAProject) {
