@@ -104,10 +104,7 @@ Result<std::unique_ptr<Cmaes>> Cmaes::create(int dimension, const CmaesSettings&
     return Status::error("cmaes settings: " + s.message());
   std::unique_ptr<Cmaes> c(new Cmaes(dimension, settings));
   c->configure(settings.population > 0 ? settings.population : defaultPopulation(dimension));
-  std::vector<double> mean(static_cast<size_t>(dimension), 0.5);
-  if (!settings.initial_mean.empty()) mean = settings.initial_mean;
-  for (double& m : mean) m = inverseBoundaryTransform(m);
-  c->restart(mean);
+  c->restart(c->initialInternalMean());
   c->sample();
   return c;
 }
@@ -144,6 +141,14 @@ void Cmaes::configure(int lambda) {
   damps_ = 1.0 + 2.0 * std::max(0.0, std::sqrt((mueff_ - 1.0) / (n + 1.0)) - 1.0) + cs_;
   chin_ = std::sqrt(n) * (1.0 - 1.0 / (4.0 * n) + 1.0 / (21.0 * n * n));
   history_length_ = 10 + static_cast<int>(std::ceil(30.0 * n / lambda));
+}
+
+// The settings' initial mean (the centre when none is given) in internal coordinates.
+std::vector<double> Cmaes::initialInternalMean() const {
+  std::vector<double> mean(static_cast<size_t>(dimension()), 0.5);
+  if (!settings_.initial_mean.empty()) mean = settings_.initial_mean;
+  for (double& m : mean) m = inverseBoundaryTransform(m);
+  return mean;
 }
 
 void Cmaes::restart(const std::vector<double>& internal_mean) {
@@ -306,10 +311,7 @@ void Cmaes::advance(std::span<const double> costs, const std::vector<int>& order
 
   if (!stop_.empty() && restarts_ < settings_.max_restarts && settings_.stall_generations > 0) {
     ++restarts_;  // local: the initial mean, the same population
-    std::vector<double> mean(un, 0.5);
-    if (!settings_.initial_mean.empty()) mean = settings_.initial_mean;
-    for (double& m : mean) m = inverseBoundaryTransform(m);
-    restart(mean);
+    restart(initialInternalMean());
   } else if (!stop_.empty() && restarts_ < settings_.max_restarts) {
     ++restarts_;
     configure(2 * lambda_);

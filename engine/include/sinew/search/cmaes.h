@@ -89,6 +89,7 @@ class Cmaes final : public Optimizer {
   Cmaes(int dimension, const CmaesSettings& settings);
   void configure(int lambda);  // strategy parameters for a population
   void restart(const std::vector<double>& internal_mean);
+  std::vector<double> initialInternalMean() const;
   void decompose();
   void sample();
   std::string stopTest(std::span<const double> costs, const std::vector<int>& order) const;
