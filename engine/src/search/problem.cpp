@@ -393,6 +393,7 @@ Evaluation runOnce(const Problem& problem, const spectral::TargetMotion& target,
   }
   e.report = std::move(run).value();
   e.cancelled = e.report.cancelled;
+  if (e.cancelled) return e;  // partial figures: not a fitness, and not worth scoring
   e.terms = scoreRun(problem, e.report, target.omega0);
   if (e.report.diverged) {
     e.terms.diverged = true;
@@ -450,8 +451,14 @@ std::vector<Evaluation> evaluateAll(const Problem& problem,
   std::vector<Evaluation> results(points.size());
   std::atomic<size_t> next{0};
   auto work = [&] {
-    for (size_t i = next.fetch_add(1); i < points.size(); i = next.fetch_add(1))
-      results[i] = evaluate(problem, points[i], cancel, record);
+    for (size_t i = next.fetch_add(1); i < points.size(); i = next.fetch_add(1)) {
+      // Once cancelled, the points not yet started are marked, not simulated: building each
+      // one's world only to stop at its first step is what made stop() slow under load.
+      if (cancel != nullptr && cancel->load(std::memory_order_relaxed))
+        results[i].cancelled = true;
+      else
+        results[i] = evaluate(problem, points[i], cancel, record);
+    }
   };
   const int workers = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(1, points.size())));
   std::vector<std::thread> pool;
