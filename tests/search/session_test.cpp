@@ -282,7 +282,8 @@ TEST(SearchSession, TheDefaultBipedEvolvesToWalkTenSeconds) {
   // Against the clip's own motion (not the evolved target): measured 5.6 deg here, 5.3 after a
   // 5-minute run; the prior's controller tracks its target to 3.5 deg before it falls.
   EXPECT_LT(best.track_err_rad_rms * 180.0 / 3.14159265358979, 8.0);
-  EXPECT_LT(seconds, 300.0);
+  // The wall time is printed, not asserted: the budget is in generations, so a loaded machine
+  // is slower but reaches the same result (search_bench measures the speed).
 }
 
 }  // namespace
