@@ -9,12 +9,14 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/controller_file.h"
+#include "cli/distributed.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
 #include "sinew/pipeline/physical_loop.h"
@@ -265,9 +267,11 @@ Result<std::unique_ptr<search::Session>> makeSession(const EvolveArgs& args,
 }
 
 void printStart(const search::Session& session, const std::string& what, const EvolveArgs& args,
-                const pipeline::ProjectSettings& chosen) {
+                const pipeline::ProjectSettings& chosen, const distributed::Ranks& ranks) {
   const search::EvolveSettings& used = session.settings();
   const int threads = used.threads > 0 ? used.threads : search::hardwareThreads();
+  char where[48] = "";
+  if (ranks.size > 1) std::snprintf(where, sizeof where, "%d MPI ranks x ", ranks.size);
   char budget[64];
   if (used.minutes > 0.0 && used.generations > 0)
     std::snprintf(budget, sizeof budget, "%d generations or %.1f min", used.generations,
@@ -282,19 +286,24 @@ void printStart(const search::Session& session, const std::string& what, const E
                   session.problem().trial_pushes.size() + 1, session.problem().trial_pushes.size(),
                   glm::length(session.problem().trial_pushes.front().impulse_ns));
   std::printf(
-      "evolving %s: %d coordinates (%s), %s, population %d, %s, %d thread%s, window %.1f "
+      "evolving %s: %d coordinates (%s), %s, population %d, %s, %s%d thread%s, window %.1f "
       "s%s, seed %llu%s\n",
       what.c_str(), session.problem().layout.size(),
       used.optimizer == search::OptimizerKind::kCmaes ? "CMA-ES" : "genetic algorithm",
       chosen.search.no_prior ? "no prior (random start, generic ranges)" : "seeded from the DFT",
-      session.population(), budget, threads, threads == 1 ? "" : "s",
+      session.population(), budget, where, threads, threads == 1 ? "" : "s",
       session.problem().simulation.seconds, trials, static_cast<unsigned long long>(used.seed),
       args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
+  if (ranks.size > 1)  // mpirun ends every rank when one dies or on Ctrl-C: say what survives
+    std::printf("checkpoint after every generation: %s/checkpoint.json (sinew evolve --resume "
+                "it, on one machine or under mpirun)\n",
+                args.out.c_str());
   std::fflush(stdout);
 }
 
-// Runs the session to its end (or Ctrl-C), a line per generation. Returns whether interrupted.
-bool runWithProgress(search::Session& session) {
+// Runs the session to its end (or Ctrl-C), a line per generation, calling `each_generation`
+// after each line. Returns whether interrupted.
+bool runWithProgress(search::Session& session, const std::function<void()>& each_generation) {
   const search::EvolveSettings& used = session.settings();
   g_interrupted = false;
   std::signal(SIGINT, onInterrupt);
@@ -332,6 +341,7 @@ bool runWithProgress(search::Session& session) {
         std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s%s\n", r.generation,
                     termsLine(snap->best_terms).c_str(), r.total.mean, rate, left, diverged.c_str());
       std::fflush(stdout);
+      each_generation();
     }
     if (search::ended(snap->state)) break;
   }
@@ -381,7 +391,14 @@ Result<bool> writeLoop(const search::Problem& problem, const pipeline::BestRepla
   return true;
 }
 
-int runEvolve(const EvolveArgs& args) {
+// Evaluation threads of this process: the flag, or every core (shared among the ranks mpirun
+// started on this machine).
+int threadsOf(const EvolveArgs& args, const distributed::Ranks& ranks) {
+  if (args.threads > 0 || ranks.size == 1) return args.threads;
+  return std::max(1, search::hardwareThreads() / std::min(ranks.size, distributed::localRanks()));
+}
+
+int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
   // Settings: the checkpoint's (a resumed search), or the project's with the flags over them.
   nlohmann::json checkpoint;
   Result<pipeline::ProjectSettings> chosen = Status::error("no settings");
@@ -412,17 +429,41 @@ int runEvolve(const EvolveArgs& args) {
   Result<pipeline::SearchSetup> setup =
       pipeline::prepareSearch(rig.asset.skeleton, rig.clip(), settings);
   if (!setup.ok()) return fail(setup.message());
+#if SINEW_HAVE_MPI
+  if (ranks.rank > 0) return distributed::serve(ranks, setup.value().problem, threadsOf(args, ranks));
+#endif
+  EvolveArgs used = args;
+  used.threads = threadsOf(args, ranks);
   Result<std::unique_ptr<search::Session>> made =
-      makeSession(args, settings, std::move(setup.value().problem), checkpoint);
+      makeSession(used, settings, std::move(setup.value().problem), checkpoint);
   if (!made.ok()) return fail(made.message());
   search::Session& session = *made.value();
-  printStart(session, setup.value().what, args, settings);
-  const bool interrupted = runWithProgress(session);
+  distributed::Traffic traffic;
+#if SINEW_HAVE_MPI
+  if (ranks.size > 1) {
+    if (Status s = distributed::handshake(ranks, session.problem()); !s.ok()) return fail(s.message());
+    session.setEvaluator(distributed::coordinator(ranks, &traffic));
+  }
+#endif
+  printStart(session, setup.value().what, used, settings, ranks);
+  const std::filesystem::path out(args.out);
+  const nlohmann::json problem_json = nlohmann::json::parse(settingsJson(settings));
+  bool warned = false;
+  const bool interrupted = runWithProgress(session, [&] {
+    if (Status s = pipeline::writeCheckpoint(session, problem_json, out); !s.ok() && !warned) {
+      std::fprintf(stderr, "sinew: warning: %s (the search goes on)\n", s.message().c_str());
+      warned = true;
+    }
+  });
+#if SINEW_HAVE_MPI
+  if (ranks.size > 1) {
+    distributed::stopWorkers(ranks);
+    std::printf("%s\n", traffic.line(ranks.size).c_str());
+  }
+#endif
 
   const auto snap = session.snapshot();
-  const std::filesystem::path out(args.out);
-  Result<bool> wrote = pipeline::writeSearchResults(session, rig.asset,
-                                                    nlohmann::json::parse(settingsJson(settings)),
+  Result<bool> wrote = pipeline::writeSearchResults(session, rig.asset, problem_json,
                                                     resultsMeta(settings, session.settings()), out);
   if (!wrote.ok()) return fail(wrote.message());
   if (!snap->failure.empty()) return fail(args.out + ": " + snap->failure);
@@ -442,6 +483,24 @@ int runEvolve(const EvolveArgs& args) {
               args.out.c_str(), settings.edits.styles.empty() ? "" : ", style.json",
               looped.value() ? ", best_loop.bvh, best_loop.glb, loop.json" : "");
   return interrupted ? 130 : 0;
+}
+
+// Under mpirun every rank runs this command: one search, rank 0 driving it (cli/distributed.h).
+int runEvolve(const EvolveArgs& args) {
+  const int launched = distributed::launchedRanks();
+  if (launched == 1) return runEvolveOn(args, {});
+#if SINEW_HAVE_MPI
+  Result<distributed::Ranks> ranks = distributed::start();
+  if (!ranks.ok()) return fail(ranks.message());
+  const int code = runEvolveOn(args, ranks.value());
+  if (code != 0 && code != 130) distributed::abort(code);  // no rank may wait for this one
+  distributed::finish();
+  return code;
+#else
+  return fail("evolve: started as one of " + std::to_string(launched) +
+              " MPI ranks, but this sinew was built without MPI (install libopenmpi-dev and "
+              "rebuild), so every rank would run the whole search alone");
+#endif
 }
 
 }  // namespace

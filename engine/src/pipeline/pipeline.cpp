@@ -232,18 +232,25 @@ std::string historyCsv(const search::Snapshot& snapshot) {
   return csv.str();
 }
 
-Result<bool> writeSearchResults(const search::Session& session, const motion::MotionAsset& rig,
-                                const nlohmann::json& problem, const search::ControllerFile& meta,
-                                const std::filesystem::path& dir) {
+Status writeCheckpoint(const search::Session& session, const nlohmann::json& problem,
+                       const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return Status::error(dir.string() + ": cannot create the output folder: " + ec.message());
   const auto snapshot = session.snapshot();
   nlohmann::json saved_state = session.checkpoint();
   saved_state["problem"] = problem;
-  if (Status s = writeFileAtomically(dir / "checkpoint.json", saved_state.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"); !s.ok())
-    return s;
-  if (Status s = writeFileAtomically(dir / "history.csv", historyCsv(*snapshot)); !s.ok()) return s;
+  const std::string text =
+      saved_state.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  if (Status s = writeFileAtomically(dir / "checkpoint.json", text); !s.ok()) return s;
+  return writeFileAtomically(dir / "history.csv", historyCsv(*snapshot));
+}
+
+Result<bool> writeSearchResults(const search::Session& session, const motion::MotionAsset& rig,
+                                const nlohmann::json& problem, const search::ControllerFile& meta,
+                                const std::filesystem::path& dir) {
+  if (Status s = writeCheckpoint(session, problem, dir); !s.ok()) return s;
+  const auto snapshot = session.snapshot();
   if (snapshot->best_point.empty()) return false;
   if (Status s = search::exportBest(session.problem(), snapshot->best_point, snapshot->best_terms,
                                     rig, dir, meta);

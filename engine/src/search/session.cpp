@@ -300,7 +300,8 @@ bool Session::runGeneration() {
   const std::vector<std::vector<double>> points = optimizer_->ask();
   const int threads = settings_.threads > 0 ? settings_.threads : hardwareThreads();
   std::vector<Evaluation> results =
-      evaluateAll(problem_, points, threads, &cancel_, settings_.record_population);
+      evaluator_ ? evaluator_(problem_, points, threads, &cancel_, settings_.record_population)
+                 : evaluateAll(problem_, points, threads, &cancel_, settings_.record_population);
   for (const Evaluation& e : results)
     if (e.cancelled) return false;  // abandoned: the same points are asked again later
 
@@ -337,10 +338,10 @@ bool Session::runGeneration() {
   record.best_survived_s = results[best].terms.survived_s;
   record.best_distance_m = results[best].terms.distance_m;
 
-  Status told = optimizer_->tell(costs);
-  if (!told.ok()) return false;
   {
+    // Under the lock: checkpoint() reads the optimiser's state from other threads.
     std::lock_guard<std::mutex> lock(mutex_);
+    if (Status told = optimizer_->tell(costs); !told.ok()) return false;
     record.generation = optimizer_->generation();
     record.evaluations = optimizer_->evaluations();
     record.wall_s = wall_offset_s_ + (now() - started_at_);
@@ -406,6 +407,8 @@ void Session::setWeights(const FitnessWeights& weights) {
   pending_weights_ = weights;
   weights_changed_ = true;
 }
+
+void Session::setEvaluator(GenerationEvaluator evaluator) { evaluator_ = std::move(evaluator); }
 
 void Session::workerLoop() {
   for (;;) {

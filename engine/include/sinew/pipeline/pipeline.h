@@ -92,6 +92,11 @@ Result<SearchSetup> prepareSearch(
 
 // A search's history as CSV: a row per generation, best/mean/worst of the total and each term.
 std::string historyCsv(const search::Snapshot& snapshot);
+// checkpoint.json and history.csv in `dir` (created), each written atomically: what
+// writeSearchResults writes first, and what `sinew evolve` rewrites after every generation so
+// that a killed run loses at most the generation in flight.
+Status writeCheckpoint(const search::Session& session, const nlohmann::json& problem,
+                       const std::filesystem::path& dir);
 // What a search leaves in `dir` (created), as `sinew evolve --out` and the editor's headless
 // export write it: checkpoint.json (the session's checkpoint with `problem`, the project's
 // settings as project JSON, under "problem": what a resume rebuilds the problem from),

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -107,6 +108,13 @@ struct Snapshot {
                         // kGenerationsWithoutScore generations diverged), or empty
 };
 
+// How a session evaluates a generation: evaluateAll's contract (results in the points' order,
+// each `cancelled` when `cancel` was set before it finished). The default is evaluateAll on this
+// process's threads; `sinew evolve` under mpirun hands shares of the points to other processes.
+using GenerationEvaluator = std::function<std::vector<Evaluation>(
+    const Problem& problem, const std::vector<std::vector<double>>& points, int threads,
+    const std::atomic<bool>* cancel, bool record)>;
+
 class Session {
  public:
   static Result<std::unique_ptr<Session>> create(Problem problem, const EvolveSettings& settings);
@@ -126,6 +134,8 @@ class Session {
   bool runGeneration();
 
   void setWeights(const FitnessWeights& weights);  // from the next generation
+  // Before start() or runGeneration(): who evaluates the generations (evaluateAll when empty).
+  void setEvaluator(GenerationEvaluator evaluator);
   // A new budget (a resumed search going on): total generations and minutes, as in the settings.
   Status setBudget(int generations, double minutes);
   std::shared_ptr<const Snapshot> snapshot() const;
@@ -151,6 +161,7 @@ class Session {
   FitnessTerms best_terms_;
   double wall_offset_s_ = 0.0;  // wall time of earlier parts (resumed sessions)
   double started_at_ = 0.0;
+  GenerationEvaluator evaluator_;  // empty: evaluateAll
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# `mpirun -np 3 sinew evolve` on loopback (docs/search.md, "Over MPI"):
+#  1. a short search over 3 ranks reaches the single process's best point, cost and optimiser
+#     state bit for bit;
+#  2. a worker killed mid-run ends the job with mpirun's message naming the rank, and the
+#     checkpoint of the last whole generation resumes in a single process.
+# Usage: mpi_evolve_test.sh SINEW MPIRUN WORKDIR
+set -euo pipefail
+sinew=$1
+mpirun=$2
+work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+run_mpi() { "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$@"; }
+short=(evolve --generations 3 --population 6 --window 1.5 --seed 3 --loop-strides 0)
+
+# 1. The same search on one process and on three.
+"$sinew" "${short[@]}" --threads 1 --out one > one.log
+run_mpi "$sinew" "${short[@]}" --out three > three.log
+grep -q "3 MPI ranks x" three.log || { echo "FAIL: the start line does not name the ranks"; cat three.log; exit 1; }
+grep "^distributed over 3 ranks" three.log
+python3 - <<'EOF'
+import json, sys
+one = json.load(open("one/checkpoint.json"))
+three = json.load(open("three/checkpoint.json"))
+for key in ("best_point", "best_terms", "optimizer", "genome_size"):
+    if one[key] != three[key]:
+        sys.exit(f"FAIL: '{key}' differs between one process and three ranks")
+print(f"one process and 3 ranks: the same best point ({len(one['best_point'])} coordinates), "
+      f"cost {one['best_terms']['total']!r} and optimiser state after {len(one['history'])} generations")
+EOF
+
+# 2. A worker killed mid-run.
+run_mpi "$sinew" evolve --generations 500 --population 6 --window 3 --seed 3 --loop-strides 0 \
+  --out killed > killed.log 2>&1 &
+launcher=$!
+for _ in $(seq 1 600); do  # until two generations are in the checkpoint (at most 60 s)
+  if [ -f killed/checkpoint.json ] &&
+     python3 -c "import json,sys; sys.exit(len(json.load(open('killed/checkpoint.json'))['history']) < 2)" 2>/dev/null; then
+    break
+  fi
+  sleep 0.1
+done
+worker=""
+for pid in $(pgrep -f "sinew evolve --generations 500" || true); do
+  if tr '\0' '\n' < "/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1"; then
+    worker=$pid
+  fi
+done
+[ -n "$worker" ] || { echo "FAIL: no rank 1 found to kill"; cat killed.log; kill "$launcher"; exit 1; }
+kill -9 "$worker"
+status=0
+wait "$launcher" || status=$?
+[ "$status" -ne 0 ] || { echo "FAIL: the job went on after a rank died"; exit 1; }
+grep -q "checkpoint after every generation: killed/checkpoint.json" killed.log ||
+  { echo "FAIL: the start did not say where the checkpoint is"; cat killed.log; exit 1; }
+grep -Eq "process rank 1 .*(exited on signal 9|Killed)" killed.log ||
+  { echo "FAIL: no message names the rank that died"; cat killed.log; exit 1; }
+generations=$(python3 -c "import json; print(len(json.load(open('killed/checkpoint.json'))['history']))")
+echo "rank 1 killed: mpirun ended the job (exit $status); the checkpoint holds $generations whole generations"
+"$sinew" evolve --resume killed/checkpoint.json --generations $((generations + 1)) --out resumed \
+  --loop-strides 0 > resumed.log
+grep -q "^gen *$((generations + 1)) " resumed.log || { echo "FAIL: the resume did not go on"; cat resumed.log; exit 1; }
+echo "resumed in one process: generation $((generations + 1)) ran"
