@@ -64,16 +64,25 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// A message of any length from `source` with `tag`, once one has arrived (MPI_Probe first).
-wire::Bytes receive(int source, int tag, MPI_Status* status = nullptr) {
-  MPI_Status probed;
-  MPI_Probe(source, tag, MPI_COMM_WORLD, &probed);
+// Waits for a message from `source` with `tag` (either may be MPI_ANY_*) by polling: Open MPI's
+// blocking calls spin a core, which an idle worker would take from the evaluations beside it.
+MPI_Status waitFor(int source, int tag) {
+  MPI_Status status;
+  for (int flag = 0;;) {
+    MPI_Iprobe(source, tag, MPI_COMM_WORLD, &flag, &status);
+    if (flag != 0) return status;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+// A message of any length from `source` with `tag`, once one has arrived.
+wire::Bytes receive(int source, int tag) {
+  const MPI_Status probed = waitFor(source, tag);
   int count = 0;
   MPI_Get_count(&probed, MPI_BYTE, &count);
   wire::Bytes bytes(static_cast<size_t>(count));
   MPI_Recv(bytes.data(), count, MPI_BYTE, probed.MPI_SOURCE, probed.MPI_TAG, MPI_COMM_WORLD,
            MPI_STATUS_IGNORE);
-  if (status != nullptr) *status = probed;
   return bytes;
 }
 
@@ -258,8 +267,7 @@ int serve(const Ranks& ranks, const search::Problem& problem, int threads) {
   // Hello: an empty share whose id is this rank's fingerprint of the problem.
   send(wire::packPoints(wire::fingerprint(problem), {}), 0, kHello);
   for (;;) {
-    MPI_Status status;
-    MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+    const MPI_Status status = waitFor(0, MPI_ANY_TAG);
     const wire::Bytes bytes = receive(0, status.MPI_TAG);
     if (status.MPI_TAG == kStop) return 0;
     if (status.MPI_TAG != kPoints) continue;  // a cancel that came after its share was done
