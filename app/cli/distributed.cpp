@@ -58,7 +58,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-enum Tag : int { kHello = 1, kPoints = 2, kCancel = 3, kResults = 4, kStop = 5 };
+enum Tag : int {
+  kHello = 1,
+  kPoints = 2,
+  kCancel = 3,
+  kResults = 4,
+  kStop = 5,
+  kAsk = 6,
+  kJob = 7
+};
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -278,6 +286,29 @@ int serve(const Ranks& ranks, const search::Problem& problem, int threads) {
     }
     send(evaluateShare(problem, share.value(), threads), 0, kResults);
   }
+}
+
+void dispatch(const Ranks& ranks, int jobs,
+              const std::function<void(int job, int rank, int exit_code)>& done) {
+  int next = 0, told = 0;
+  while (told < ranks.size - 1) {
+    const MPI_Status status = waitFor(MPI_ANY_SOURCE, kAsk);
+    int report[2] = {-1, 0};  // the job finished and its exit code
+    MPI_Recv(report, 2, MPI_INT, status.MPI_SOURCE, kAsk, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (report[0] >= 0) done(report[0], status.MPI_SOURCE, report[1]);
+    const int job = next < jobs ? next++ : -1;
+    if (job < 0) ++told;
+    MPI_Send(&job, 1, MPI_INT, status.MPI_SOURCE, kJob, MPI_COMM_WORLD);
+  }
+}
+
+int nextJob(int finished, int exit_code) {
+  int report[2] = {finished, exit_code};
+  MPI_Send(report, 2, MPI_INT, 0, kAsk, MPI_COMM_WORLD);
+  (void)waitFor(0, kJob);
+  int job = -1;
+  MPI_Recv(&job, 1, MPI_INT, 0, kJob, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return job;
 }
 #endif
 

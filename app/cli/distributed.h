@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "sinew/core/status.h"
@@ -61,6 +62,15 @@ void stopWorkers(const Ranks& ranks);
 // Ranks > 0: sends hello, then evaluates the shares rank 0 sends until it says stop. Returns the
 // process's exit code.
 int serve(const Ranks& ranks, const search::Problem& problem, int threads);
+
+// A batch over the ranks (`sinew evolve --batch` under mpirun): rank 0 hands out job indices
+// 0..jobs-1 to the ranks as they ask, calling `done(job, rank, exit_code)` as each reports one
+// finished, until every job is done and every rank told there are no more.
+void dispatch(const Ranks& ranks, int jobs,
+              const std::function<void(int job, int rank, int exit_code)>& done);
+// Ranks > 0: reports the job it finished (-1 at first) and its exit code, and returns the next
+// job, or -1 when there are no more.
+int nextJob(int finished, int exit_code);
 #endif
 
 }  // namespace sinew::app::distributed

@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/controller_file.h"
 #include "cli/distributed.h"
+#include "cli/evolve.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
 #include "sinew/pipeline/physical_loop.h"
@@ -32,44 +33,6 @@ extern "C" void onInterrupt(int) {
   g_interrupted = true;
 }
 
-// The command line as given; what it means for the search is a pipeline::ProjectSettings
-// (chosenSettings), the same struct a project file and the editor fill.
-struct EvolveArgs {
-  std::string project;
-  std::string rig;
-  std::string clip;
-  std::string target_path;
-  std::string animation;
-  int population = 0;
-  int generations = -1;  // -1: not given
-  double minutes = 0.0;
-  double window = 10.0;
-  std::string optimizer = "cmaes";
-  bool no_prior = false;
-  std::uint64_t seed = 1;
-  int threads = 0;
-  int harmonics = 5;
-  double sigma = 0.0;
-  int trials = 1;
-  double trial_push = 0.3;
-  int restart_after = 0;
-  std::string resume;
-  std::string out;
-  std::string terrain = "flat";
-  std::vector<std::string> pushes;
-  std::vector<std::string> weights;
-  double style_weight = 0.0;        // --style-weight: the style term's weight
-  std::vector<std::string> styles;  // --style NEUTRAL,STYLED[:WEIGHT]
-  int loop_strides = 2;             // 0: no loop
-  bool in_place = false;
-  ImportFlags import;
-  BodyFlags body;
-  std::vector<std::string> given;  // the flags given ("--harmonics", ...)
-  bool has(const char* flag) const {
-    return std::find(given.begin(), given.end(), flag) != given.end();
-  }
-};
-
 std::string termsLine(const search::FitnessTerms& t) {
   char style[32] = "";
   if (t.style > 0.0) std::snprintf(style, sizeof style, " style %.2f", t.style);
@@ -78,8 +41,7 @@ std::string termsLine(const search::FitnessTerms& t) {
                 "%.2f (fall %.1f track %.2f speed %.2f heading %.2f steps %.2f upright %.2f "
                 "energy %.2f%s) up %.1f s, %.1f m",
                 t.total, t.fall, t.tracking, t.speed, t.heading, t.placement, t.upright, t.energy,
-                style,
-                t.survived_s, t.distance_m);
+                style, t.survived_s, t.distance_m);
   return t.fell && !t.fall_reason.empty() ? std::string(line) + " (fell: " + t.fall_reason + ")"
                                           : std::string(line);
 }
@@ -112,7 +74,8 @@ Status applyWeightFlags(const std::vector<std::string>& flags, search::FitnessWe
 Result<pipeline::StylePair> parseStyleFlag(const std::string& text) {
   const std::string usage = "--style '" + text + "': expected NEUTRAL,STYLED[:WEIGHT]";
   const size_t comma = text.find(',');
-  if (comma == std::string::npos || comma == 0 || comma + 1 == text.size()) return Status::error(usage);
+  if (comma == std::string::npos || comma == 0 || comma + 1 == text.size())
+    return Status::error(usage);
   pipeline::StylePair pair;
   pair.neutral = text.substr(0, comma);
   pair.styled = text.substr(comma + 1);
@@ -131,7 +94,8 @@ Result<pipeline::StylePair> parseStyleFlag(const std::string& text) {
     pair.weight = weight;
     pair.styled = pair.styled.substr(0, colon);
   }
-  if (pair.styled.empty() || pair.styled.find(',') != std::string::npos) return Status::error(usage);
+  if (pair.styled.empty() || pair.styled.find(',') != std::string::npos)
+    return Status::error(usage);
   pair.label = toUtf8(std::filesystem::path(pair.styled).stem().string());
   return pair;
 }
@@ -253,7 +217,8 @@ Result<std::unique_ptr<search::Session>> makeSession(const EvolveArgs& args,
   if (!made.ok()) return Status::error(args.resume + ": " + made.message());
   search::Session& session = *made.value();
   if (args.generations > 0 || args.minutes > 0.0) {
-    if (Status budget = session.setBudget(std::max(0, args.generations), args.minutes); !budget.ok())
+    if (Status budget = session.setBudget(std::max(0, args.generations), args.minutes);
+        !budget.ok())
       return budget;
   }
   if (!args.weights.empty() || args.has("--style-weight"))
@@ -295,9 +260,10 @@ void printStart(const search::Session& session, const std::string& what, const E
       session.problem().simulation.seconds, trials, static_cast<unsigned long long>(used.seed),
       args.resume.empty() ? "" : (", resumed from " + args.resume).c_str());
   if (ranks.size > 1)  // mpirun ends every rank when one dies or on Ctrl-C: say what survives
-    std::printf("checkpoint after every generation: %s/checkpoint.json (sinew evolve --resume "
-                "it, on one machine or under mpirun)\n",
-                args.out.c_str());
+    std::printf(
+        "checkpoint after every generation: %s/checkpoint.json (sinew evolve --resume "
+        "it, on one machine or under mpirun)\n",
+        args.out.c_str());
   std::fflush(stdout);
 }
 
@@ -339,7 +305,8 @@ bool runWithProgress(search::Session& session, const std::function<void()>& each
                     diverged.c_str(), rate, left);
       else
         std::printf("gen %3d  best %s  mean %.2f  %.1f eval/s%s%s\n", r.generation,
-                    termsLine(snap->best_terms).c_str(), r.total.mean, rate, left, diverged.c_str());
+                    termsLine(snap->best_terms).c_str(), r.total.mean, rate, left,
+                    diverged.c_str());
       std::fflush(stdout);
       each_generation();
     }
@@ -380,14 +347,15 @@ Result<bool> writeLoop(const search::Problem& problem, const pipeline::BestRepla
   }
   if (!loop.ok()) return loop.status();
   const pipeline::PhysicalLoop& l = loop.value().loop;
-  for (const std::string& line : loop.value().style.lines()) std::printf("loop style %s\n", line.c_str());
+  for (const std::string& line : loop.value().style.lines())
+    std::printf("loop style %s\n", line.c_str());
   std::printf(
       "loop: %d strides of %.3f s from %.2f s of the run, %d frames; seam %.2f deg %.2f cm (one "
       "frame moves up to %.2f deg %.2f cm); foot slide %.2f -> %.2f cm mean per contact (%zu "
       "contacts, plant up to %.1f deg); %.1f deg RMS from the run\n",
       l.strides, l.period_s, l.run_start_s, l.clip.frame_count, l.seam_deg, l.seam_cm,
-      l.step_deg_max, l.step_cm_max, l.slideBeforeMeanCm(), l.slideAfterMeanCm(),
-      l.contacts.size(), l.correction_deg_max, l.deviation_deg_rms);
+      l.step_deg_max, l.step_cm_max, l.slideBeforeMeanCm(), l.slideAfterMeanCm(), l.contacts.size(),
+      l.correction_deg_max, l.deviation_deg_rms);
   return true;
 }
 
@@ -397,6 +365,8 @@ int threadsOf(const EvolveArgs& args, const distributed::Ranks& ranks) {
   if (args.threads > 0 || ranks.size == 1) return args.threads;
   return std::max(1, search::hardwareThreads() / std::min(ranks.size, distributed::localRanks()));
 }
+
+}  // namespace
 
 int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
   // Settings: the checkpoint's (a resumed search), or the project's with the flags over them.
@@ -430,7 +400,8 @@ int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
       pipeline::prepareSearch(rig.asset.skeleton, rig.clip(), settings);
   if (!setup.ok()) return fail(setup.message());
 #if SINEW_HAVE_MPI
-  if (ranks.rank > 0) return distributed::serve(ranks, setup.value().problem, threadsOf(args, ranks));
+  if (ranks.rank > 0)
+    return distributed::serve(ranks, setup.value().problem, threadsOf(args, ranks));
 #endif
   EvolveArgs used = args;
   used.threads = threadsOf(args, ranks);
@@ -441,7 +412,8 @@ int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
   distributed::Traffic traffic;
 #if SINEW_HAVE_MPI
   if (ranks.size > 1) {
-    if (Status s = distributed::handshake(ranks, session.problem()); !s.ok()) return fail(s.message());
+    if (Status s = distributed::handshake(ranks, session.problem()); !s.ok())
+      return fail(s.message());
     session.setEvaluator(distributed::coordinator(ranks, &traffic));
   }
 #endif
@@ -485,14 +457,17 @@ int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
   return interrupted ? 130 : 0;
 }
 
+namespace {
+
 // Under mpirun every rank runs this command: one search, rank 0 driving it (cli/distributed.h).
 int runEvolve(const EvolveArgs& args) {
   const int launched = distributed::launchedRanks();
-  if (launched == 1) return runEvolveOn(args, {});
+  if (launched == 1) return args.batch.empty() ? runEvolveOn(args, {}) : runBatch(args, {});
 #if SINEW_HAVE_MPI
   Result<distributed::Ranks> ranks = distributed::start();
   if (!ranks.ok()) return fail(ranks.message());
-  const int code = runEvolveOn(args, ranks.value());
+  const int code =
+      args.batch.empty() ? runEvolveOn(args, ranks.value()) : runBatch(args, ranks.value());
   if (code != 0 && code != 130) distributed::abort(code);  // no rank may wait for this one
   distributed::finish();
   return code;
@@ -578,10 +553,11 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
                    "Weight of the style term: the run's harmonic spectrum against the target's, "
                    "per joint group, per radian (default 0: not measured)")
       ->check(CLI::Range(0.0, 1000.0));
-  command->add_option("--style", args->styles,
-                      "Evolve toward the motion with a style: NEUTRAL,STYLED[:WEIGHT] (clips of the "
-                      "rig's skeleton; weight in [-1, 2], default 1, 0 = the original); repeatable, "
-                      "added to the project's styles");
+  command->add_option(
+      "--style", args->styles,
+      "Evolve toward the motion with a style: NEUTRAL,STYLED[:WEIGHT] (clips of the "
+      "rig's skeleton; weight in [-1, 2], default 1, 0 = the original); repeatable, "
+      "added to the project's styles");
   command
       ->add_option("--loop-strides", args->loop_strides,
                    "Whole strides in best_loop.bvh/.glb, the best run as a seamless loop with "
@@ -591,13 +567,22 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
   command->add_flag("--in-place", args->in_place,
                     "The loop's root stays in place (its horizontal travel removed)");
   command->add_option("--resume", args->resume, "Continue from a checkpoint.json");
+  command->add_option("--batch", args->batch,
+                      "Evolve every clip of a folder (.bvh, .glb, .gltf) or of a list file (a path "
+                      "a line), each as its own rig (or as --clip of the one --rig), into "
+                      "OUT/<name>/, with OUT/summary.csv and summary.json; under mpirun the ranks "
+                      "share the clips");
+  command
+      ->add_option("--batch-index", args->batch_index,
+                   "Only the batch's clip I (0-based), as one task of a scheduler's job array")
+      ->check(CLI::Range(0, 1000000));
   command->add_option("--out", args->out, "Output folder")->required();
   args->import.addTo(*command);
   args->body.addTo(*command);
   command->callback([args, command, &exit_code]() {
-    for (const char* flag : {"--harmonics", "--terrain", "--window", "--population", "--optimizer",
-                             "--seed", "--no-prior", "--trials", "--trial-push",
-                             "--restart-after", "--style-weight"})
+    for (const char* flag :
+         {"--harmonics", "--terrain", "--window", "--population", "--optimizer", "--seed",
+          "--no-prior", "--trials", "--trial-push", "--restart-after", "--style-weight"})
       if (command->count(flag) > 0) args->given.emplace_back(flag);
     if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");
@@ -606,6 +591,13 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       exit_code = fail(
           "--resume continues the search as it was: the rig, clip, styles, window and "
           "terrain come from the checkpoint");
+    else if (!args->batch.empty() && (!args->project.empty() || !args->resume.empty() ||
+                                      !args->clip.empty() || !args->target_path.empty()))
+      exit_code = fail(
+          "--batch takes its clips from the list or folder (each its own rig, or with --rig one "
+          "rig for all): not with a project, --clip, --target or --resume");
+    else if (args->batch.empty() && args->batch_index >= 0)
+      exit_code = fail("--batch-index picks a clip of --batch: give --batch too");
     else if (!args->target_path.empty() && !args->styles.empty())
       exit_code = fail(
           "--style edits the clip's harmonic model; a --target file is tracked as it is (apply "

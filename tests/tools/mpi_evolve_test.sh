@@ -4,11 +4,13 @@
 #     state bit for bit;
 #  2. a worker killed mid-run ends the job with mpirun's message naming the rank, and the
 #     checkpoint of the last whole generation resumes in a single process.
-# Usage: mpi_evolve_test.sh SINEW MPIRUN WORKDIR
+#  3. a batch of three clips over the ranks and as a job array writes the same summary.
+# Usage: mpi_evolve_test.sh SINEW MPIRUN WORKDIR SOURCE_DIR
 set -euo pipefail
 sinew=$1
 mpirun=$2
 work=$3
+assets=$4/assets
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 run_mpi() { "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$@"; }
 short=(evolve --generations 3 --population 6 --window 1.5 --seed 3 --loop-strides 0)
@@ -61,3 +63,26 @@ echo "rank 1 killed: mpirun ended the job (exit $status); the checkpoint holds $
   --loop-strides 0 > resumed.log
 grep -q "^gen *$((generations + 1)) " resumed.log || { echo "FAIL: the resume did not go on"; cat resumed.log; exit 1; }
 echo "resumed in one process: generation $((generations + 1)) ran"
+
+# 3. A batch of three clips over the ranks (rank 0 hands them out), and the same batch as a job
+#    array of three single tasks: each writes its clip's files; the summary lists all three.
+mkdir -p library
+cp "$assets"/{biped_walk,hopper_hop,stepper_step}.bvh library/
+batch=(evolve --batch library --generations 2 --population 6 --window 1 --seed 1 --loop-strides 0)
+run_mpi "$sinew" "${batch[@]}" --out batch > batch.log
+for task in 2 0 1; do "$sinew" "${batch[@]}" --batch-index "$task" --out array > "array_$task.log"; done
+python3 - <<'PY'
+import csv, json, sys
+for out in ("batch", "array"):
+    rows = list(csv.DictReader(open(f"{out}/summary.csv")))
+    names = [r["folder"] for r in rows]
+    if names != ["biped_walk", "hopper_hop", "stepper_step"] or any(r["status"] != "ok" for r in rows):
+        sys.exit(f"FAIL: {out}/summary.csv: {rows}")
+    for name in names:
+        json.load(open(f"{out}/{name}/best.json"))
+    print(f"{out}: summary of 3 clips, " + ", ".join(f"{r['folder']} cost {r['cost']} (rank {r['rank']})" for r in rows))
+one = {r["folder"]: r["cost"] for r in csv.DictReader(open("batch/summary.csv"))}
+arr = {r["folder"]: r["cost"] for r in csv.DictReader(open("array/summary.csv"))}
+if one != arr:
+    sys.exit(f"FAIL: the ranks' batch and the job array differ: {one} vs {arr}")
+PY
