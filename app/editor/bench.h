@@ -31,7 +31,7 @@ class EditorBench {
  public:
   // `frames` per phase at least; the search phases also last until two generations have finished
   // in them (at most `phase_limit_s`).
-  EditorBench(int frames, double phase_limit_s = 150.0)
+  EditorBench(int frames, double phase_limit_s = 120.0)
       : frames_(frames), limit_s_(phase_limit_s) {}
 
   BenchPhase phase() const { return phase_; }

@@ -626,6 +626,7 @@ int searchGeneration(const EditorState& state) {
 bool countFrame(RunProgress& run, EditorSession& s, const EditorOptions& options, bool headless,
                 double elapsed_s, GLFWwindow* window) {
   if (run.bench) {
+    ++run.frame;
     if (run.bench->failed()) {
       run.exit_code = 1;
       glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -800,6 +801,21 @@ Framebuffer drawFrame(GLFWwindow* window, EditorSession& s, WindowEvents& events
   return renderFrame(window, s, layout, scene);
 }
 
+// A screenshot that waits for the search's generations draws (the population, its publishes) at
+// most kWaitingFps frames a second: the frames are not counted, and on a software GL drawing
+// flat out would leave the search (at niceness 10) almost nothing.
+void paceWhileWaiting(const EditorSession& s, const EditorOptions& options, bool headless,
+                      const RunProgress& run, Clock::time_point frame_start) {
+  constexpr double kWaitingFps = 5.0;
+  const bool waiting = headless && !run.bench && options.evolve && run.frame == 0 &&
+                       searchRunning(s.state) &&
+                       searchGeneration(s.state) < options.evolve_generations;
+  if (!waiting) return;
+  const auto next = frame_start + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(1.0 / kWaitingFps));
+  std::this_thread::sleep_until(next);
+}
+
 // The main loop, until the window closes: events, panels, the 3D view, headless pictures,
 // autosave. Returns the exit code.
 int runFrames(GLFWwindow* window, WindowEvents& events, EditorSession& s,
@@ -853,6 +869,7 @@ int runFrames(GLFWwindow* window, WindowEvents& events, EditorSession& s,
     finishHeadlessFrame(run, s, options, layout, fb, done, window);
     glfwSwapBuffers(window);
     if (s.profile_enabled) s.profile.mark(FrameStage::kSwap);
+    paceWhileWaiting(s, options, headless, run, now);
     if (run.bench) {
       const double end_s = std::chrono::duration<double>(Clock::now() - start).count();
       run.bench->frameDrawn(s.state, interval, end_s - elapsed_s, end_s,
