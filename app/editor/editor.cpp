@@ -762,10 +762,12 @@ bool frameWasStill(const EditorSession& s, const WindowEvents& events, const Red
          state.log.lines().size() == redraw.log_seen;
 }
 
-// Sleeps until an event arrives or the search publishes a snapshot (polled twice a second).
+// Sleeps until an event arrives or the search publishes a snapshot (polled twice a second), 30 s
+// at most (a frame then, for the autosave).
 void waitForChange(GLFWwindow* window, const EditorSession& s, const WindowEvents& events,
                    const Redraw& redraw) {
-  while (!glfwWindowShouldClose(window)) {
+  const Clock::time_point until = Clock::now() + std::chrono::seconds(30);
+  while (!glfwWindowShouldClose(window) && Clock::now() < until) {
     glfwWaitEventsTimeout(0.5);
     const EvolutionState& evolution = s.state.evolution;
     if (events.input != redraw.input_seen) return;
