@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -16,8 +17,10 @@
 #include <imgui_internal.h>  // FindWindowByName: the size a user dragged a panel to
 #include "editor/gl.h"       // before GLFW: it defines GLFW_INCLUDE_NONE
 
+#include "editor/bench.h"
 #include "editor/camera.h"
 #include "editor/editor_state.h"
+#include "editor/frame_stats.h"
 #include "editor/panels/panels.h"
 #include "editor/preferences.h"
 #include "editor/project_model.h"
@@ -147,6 +150,7 @@ struct WindowEvents {
   };
   std::vector<std::string> dropped;
   std::vector<Key> keys;
+  int input = 0;  // counts every event (mouse, keys, text, resize, expose): the loop redraws
 };
 
 // Space play/pause, Left/Right step a frame, Home rewinds, F frames the character; Ctrl+Z undo,
@@ -210,33 +214,6 @@ void updateCamera(OrbitCamera& camera, EditorState& state, const Scene& scene, d
   camera.target.x = now.x;
   camera.target.z = now.y;
 }
-
-// Frame times of the last frames, seconds; median and 95th percentile for the overlay.
-class FrameTimes {
- public:
-  void add(double seconds) {
-    if (times_.size() < 240) {
-      times_.push_back(seconds);
-    } else {
-      times_[next_] = seconds;
-      next_ = (next_ + 1) % times_.size();
-    }
-  }
-  void clear() {
-    times_.clear();
-    next_ = 0;
-  }
-  double percentile(double p) const {
-    if (times_.empty()) return 0.0;
-    std::vector<double> sorted = times_;
-    std::sort(sorted.begin(), sorted.end());
-    return sorted[static_cast<size_t>(p * (sorted.size() - 1))];
-  }
-
- private:
-  std::vector<double> times_;
-  size_t next_ = 0;
-};
 
 void drawOverlay(const EditorState& state, const Rect& viewport, const FrameTimes& times,
                  bool renderer_ready) {
@@ -313,12 +290,41 @@ void onGlfwError(int code, const char* description) {
 void onDrop(GLFWwindow* window, int count, const char** paths) {
   auto* events = static_cast<WindowEvents*>(glfwGetWindowUserPointer(window));
   for (int i = 0; i < count; ++i) events->dropped.emplace_back(paths[i]);
+  ++events->input;
+}
+
+// Any other event: the next frame is drawn (these are installed before ImGui's backend, which
+// calls the ones it also handles after its own).
+void onInput(GLFWwindow* window) {
+  ++static_cast<WindowEvents*>(glfwGetWindowUserPointer(window))->input;
+}
+void onCursor(GLFWwindow* window, double, double) {
+  onInput(window);
+}
+void onButton(GLFWwindow* window, int, int, int) {
+  onInput(window);
+}
+void onScroll(GLFWwindow* window, double, double) {
+  onInput(window);
+}
+void onChar(GLFWwindow* window, unsigned) {
+  onInput(window);
+}
+void onSize(GLFWwindow* window, int, int) {
+  onInput(window);
+}
+void onFocus(GLFWwindow* window, int) {
+  onInput(window);
+}
+void onEnter(GLFWwindow* window, int) {
+  onInput(window);
 }
 
 // Installed before ImGui's backend, which calls it after its own handling.
 void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
-  if (action == GLFW_RELEASE) return;
   auto* events = static_cast<WindowEvents*>(glfwGetWindowUserPointer(window));
+  ++events->input;
+  if (action == GLFW_RELEASE) return;
   events->keys.push_back({key, mods, action == GLFW_REPEAT});
 }
 
@@ -377,6 +383,14 @@ GLFWwindow* openWindow(int width, int height, bool headless, WindowEvents& event
   glfwSetWindowUserPointer(window, &events);
   glfwSetDropCallback(window, onDrop);
   glfwSetKeyCallback(window, onKey);
+  glfwSetCursorPosCallback(window, onCursor);
+  glfwSetMouseButtonCallback(window, onButton);
+  glfwSetScrollCallback(window, onScroll);
+  glfwSetCharCallback(window, onChar);
+  glfwSetFramebufferSizeCallback(window, onSize);
+  glfwSetWindowRefreshCallback(window, onInput);
+  glfwSetWindowFocusCallback(window, onFocus);
+  glfwSetCursorEnterCallback(window, onEnter);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -409,6 +423,8 @@ struct EditorSession {
   OrbitCamera camera;
   ViewportDrag drag;
   FrameTimes frame_times;
+  StageProfile profile;  // --bench: where the frames' time goes
+  bool profile_enabled = false;
   Renderer renderer;
   std::filesystem::path recovery;  // the autosave file, empty in headless runs
 };
@@ -449,7 +465,14 @@ void startSession(EditorSession& s, const EditorOptions& options, const Preferen
     if (!openAny(state, options.file, options.animation)) startUntitled(state);
   }
   state.evolution.settings.shown = options.shown;
-  if (options.bench) state.evolution.settings.search.minutes = options.evolve_minutes;
+  // The window draws while the search runs: it leaves the UI and the GL driver a core.
+  state.evolution.threads = editorSearchThreads();
+  if (options.bench) {
+    // The benchmark's search: its population is the characters shown (its generations come
+    // sooner than the default 23's, and each phase waits for two of them).
+    state.evolution.settings.search.minutes = options.evolve_minutes;
+    state.evolution.settings.search.population = options.shown;
+  }
   if (options.evolve) {
     state.evolution.settings.search.minutes = options.evolve_minutes;
     startEvolution(state);
@@ -571,18 +594,22 @@ Framebuffer renderFrame(GLFWwindow* window, EditorSession& s, const Layout& layo
   s.renderer.draw(rect, s.camera, scene, s.state.view.show_grid);
   for (LogLine& line : s.renderer.takeMessages()) s.state.log.add(line.level, std::move(line.text));
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (s.profile_enabled) {
+    glFinish();
+    s.profile.mark(FrameStage::kImgui);
+  }
   return fb;
 }
 
 // ---------------------------------------------------------------- headless runs
 
 // Where a headless run (--screenshot, --bench, --panel-shots) is: frames counted, the
-// benchmark's phase, its idle figures, and whether anything failed.
-enum class BenchPhase { kIdle, kWaiting, kSearching };
+// benchmark, and whether anything failed.
 struct RunProgress {
   int frame = 0;
-  BenchPhase phase = BenchPhase::kIdle;
-  double idle_median = 0.0, idle_p95 = 0.0;
+  double longest_after_first_s = 0.0;  // the longest frame once the first second has passed
+  int frames_after_first = 0;
+  std::unique_ptr<EditorBench> bench;  // --bench
   int exit_code = 0;
 };
 
@@ -594,59 +621,32 @@ int searchGeneration(const EditorState& state) {
   return state.evolution.snapshot ? state.evolution.snapshot->generation : 0;
 }
 
-// Counts this frame towards --frames; returns true when the run's frames are all drawn. The
-// frame-time benchmark: the clip alone, then the population replaying while the search runs on
-// the other threads; the same window, the same process.
+// Counts this frame towards --frames; returns true when the run's frames are all drawn (the
+// benchmark: when its phases are done).
 bool countFrame(RunProgress& run, EditorSession& s, const EditorOptions& options, bool headless,
                 double elapsed_s, GLFWwindow* window) {
-  const int generation = searchGeneration(s.state);
-  if (!options.bench) {
-    // A screenshot of a search waits for its generations (at most two minutes of wall time).
-    const bool waiting = headless && options.evolve && searchRunning(s.state) &&
-                         generation < options.evolve_generations && elapsed_s < 120.0;
-    if (!waiting) ++run.frame;
-    return headless && run.frame >= options.frames;
-  }
-  if (run.phase == BenchPhase::kWaiting && (generation >= 1 || elapsed_s > 300.0)) {
-    if (generation < 1) {
-      std::cerr << "sinew edit: --bench: the search finished no generation in 300 s\n";
+  if (run.bench) {
+    ++run.frame;
+    if (run.bench->failed()) {
       run.exit_code = 1;
       glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
-    run.phase = BenchPhase::kSearching;
-    s.frame_times.clear();
-    run.frame = 0;
+    return run.bench->done() && !run.bench->failed();
   }
-  if (run.phase != BenchPhase::kWaiting) ++run.frame;
-  if (run.phase == BenchPhase::kIdle && run.frame >= options.frames) {
-    run.idle_median = s.frame_times.percentile(0.5);
-    run.idle_p95 = s.frame_times.percentile(0.95);
-    if (!startEvolution(s.state)) {
-      run.exit_code = 1;
-      glfwSetWindowShouldClose(window, GLFW_TRUE);
-    }
-    run.phase = BenchPhase::kWaiting;
-  }
-  return run.phase == BenchPhase::kSearching && run.frame >= options.frames;
+  // A screenshot of a search waits for its generations (at most two minutes of wall time).
+  const bool waiting = headless && options.evolve && searchRunning(s.state) &&
+                       searchGeneration(s.state) < options.evolve_generations && elapsed_s < 120.0;
+  if (!waiting) ++run.frame;
+  return headless && run.frame >= options.frames;
 }
 
-void printBench(const RunProgress& run, const EditorSession& s, const EditorOptions& options,
-                const Framebuffer& fb) {
-  const double median = s.frame_times.percentile(0.5), p95 = s.frame_times.percentile(0.95);
-  std::printf(
-      "editor frame time, %dx%d, %d frames each, %s:\n"
-      "  the clip alone:                        median %6.1f ms (%4.0f fps), 95th "
-      "percentile %6.1f ms\n"
-      "  %2d characters while the search runs:   median %6.1f ms (%4.0f fps), 95th "
-      "percentile %6.1f ms  (generation %d, %s)\n"
-      "  ratio (search / alone): median %.2fx, 95th percentile %.2fx\n",
-      fb.width, fb.height, options.frames, reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
-      run.idle_median * 1000.0, run.idle_median > 0 ? 1.0 / run.idle_median : 0.0,
-      run.idle_p95 * 1000.0, s.state.evolution.settings.shown, median * 1000.0,
-      median > 0 ? 1.0 / median : 0.0, p95 * 1000.0, searchGeneration(s.state),
-      searchRunning(s.state) ? "still running" : "finished",
-      run.idle_median > 0 ? median / run.idle_median : 0.0,
-      run.idle_p95 > 0 ? p95 / run.idle_p95 : 0.0);
+void printBench(const RunProgress& run, const EditorSession& s, const Framebuffer& fb) {
+  std::fputs(run.bench
+                 ->report(reinterpret_cast<const char*>(glGetString(GL_RENDERER)), fb.width,
+                          fb.height, s.state.evolution.settings.shown)
+                 .c_str(),
+             stdout);
+  std::fflush(stdout);
 }
 
 void writeScreenshot(RunProgress& run, const EditorSession& s, const EditorOptions& options,
@@ -663,6 +663,15 @@ void writeScreenshot(RunProgress& run, const EditorSession& s, const EditorOptio
       options.screenshot.c_str(), fb.width, fb.height, run.frame, times.percentile(0.5) * 1000.0,
       times.percentile(0.5) > 0 ? 1.0 / times.percentile(0.5) : 0.0,
       times.percentile(0.95) * 1000.0);
+  const EvolutionState& evolution = s.state.evolution;
+  if (evolution.session) {
+    // What keeps frames short while the search runs: the UI thread never waits for it.
+    std::printf(
+        "sinew edit: longest frame after the first second %.1f ms (%d frames); the search's "
+        "snapshot polled every frame: longest wait %.3f ms, %d polls over %.0f ms\n",
+        run.longest_after_first_s * 1000.0, run.frames_after_first,
+        evolution.longest_poll_wait_s * 1000.0, evolution.slow_polls, kSlowPoll_s * 1000.0);
+  }
 }
 
 // One PNG per panel, for the user guide.
@@ -700,7 +709,7 @@ void finishHeadlessFrame(RunProgress& run, EditorSession& s, const EditorOptions
     return;
   }
   if (!done) return;
-  if (options.bench) printBench(run, s, options, fb);
+  if (run.bench) printBench(run, s, fb);
   if (!options.screenshot.empty()) writeScreenshot(run, s, options, fb);
   if (options.panel_dir.empty()) {
     glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -728,6 +737,87 @@ void autosave(Autosave& autosaved, EditorSession& s, bool unsaved, Clock::time_p
   autosaved.saved = current;
 }
 
+// Drawing only when something changed: a paused, unchanged scene costs nothing. After any change
+// (input, playback, a drag, the camera gliding, a new generation or log line) a few more frames
+// are drawn, for ImGui's hover and focus to settle; then the loop sleeps in
+// glfwWaitEventsTimeout and draws again on input or when the search publishes a generation.
+struct Redraw {
+  static constexpr int kSettleFrames = 3;
+  int settle = kSettleFrames;  // frames still to draw before the loop may sleep
+  int input_seen = 0;          // WindowEvents::input when the last frame began
+  const search::Snapshot* snapshot_seen = nullptr;
+  size_t log_seen = 0;
+  bool after_wait = false;  // this frame followed a sleep: its interval is not a frame time
+};
+
+// Whether this frame changed nothing that the next one would draw differently.
+bool frameWasStill(const EditorSession& s, const WindowEvents& events, const Redraw& redraw,
+                   const glm::vec3& camera_before) {
+  const EditorState& state = s.state;
+  return !(state.clip() != nullptr && state.playback.playing) && !state.frame_requested &&
+         events.input == redraw.input_seen && !ImGui::IsAnyItemActive() &&
+         !ImGui::IsAnyMouseDown() && !s.drag.orbit && !s.drag.pan &&
+         glm::length(s.camera.target - camera_before) < 5e-4f * std::max(s.camera.distance, 1.0f) &&
+         state.evolution.snapshot.get() == redraw.snapshot_seen &&
+         state.log.lines().size() == redraw.log_seen;
+}
+
+// Sleeps until an event arrives or the search publishes a snapshot (polled twice a second), 30 s
+// at most (a frame then, for the autosave).
+void waitForChange(GLFWwindow* window, const EditorSession& s, const WindowEvents& events,
+                   const Redraw& redraw) {
+  const Clock::time_point until = Clock::now() + std::chrono::seconds(30);
+  while (!glfwWindowShouldClose(window) && Clock::now() < until) {
+    glfwWaitEventsTimeout(0.5);
+    const EvolutionState& evolution = s.state.evolution;
+    if (events.input != redraw.input_seen) return;
+    if (evolution.session && evolution.session->snapshot() != evolution.snapshot) return;
+  }
+}
+
+// One frame: the panels, the scene, the 3D view and ImGui over it (swapped by the caller).
+Framebuffer drawFrame(GLFWwindow* window, EditorSession& s, WindowEvents& events,
+                      PanelLayout& user_layout, bool headless, double dt, bool& ask_to_quit,
+                      bool& quit_confirmed, Layout& layout) {
+  const bool profiling = s.profile_enabled;
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  layout = computeLayout(display, user_layout);
+  if (drawPanels(s, layout, events, ask_to_quit)) {
+    quit_confirmed = true;
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+  }
+  if (!headless) followResizes(layout, display, user_layout);
+  // One undo step per finished edit: nothing is recorded while a slider is being dragged.
+  if (!ImGui::IsAnyItemActive()) recordHistory(s.state);
+  if (profiling) s.profile.mark(FrameStage::kPanels);
+  handleViewportMouse(s.camera, s.drag, layout.viewport);
+  const Scene scene = buildScene(s.state);
+  pickClicked(s, scene, layout.viewport);
+  updateCamera(s.camera, s.state, scene, dt);
+  drawOverlay(s.state, layout.viewport, s.frame_times, s.renderer.ready());
+  ImGui::Render();
+  if (profiling) s.profile.mark(FrameStage::kScene);
+  return renderFrame(window, s, layout, scene);
+}
+
+// A screenshot that waits for the search's generations draws (the population, its publishes) at
+// most kWaitingFps frames a second: the frames are not counted, and on a software GL drawing
+// flat out would leave the search (at niceness 10) almost nothing.
+void paceWhileWaiting(const EditorSession& s, const EditorOptions& options, bool headless,
+                      const RunProgress& run, Clock::time_point frame_start) {
+  constexpr double kWaitingFps = 5.0;
+  const bool waiting = headless && !run.bench && options.evolve && run.frame == 0 &&
+                       searchRunning(s.state) &&
+                       searchGeneration(s.state) < options.evolve_generations;
+  if (!waiting) return;
+  const auto next = frame_start + std::chrono::duration_cast<Clock::duration>(
+                                      std::chrono::duration<double>(1.0 / kWaitingFps));
+  std::this_thread::sleep_until(next);
+}
+
 // The main loop, until the window closes: events, panels, the 3D view, headless pictures,
 // autosave. Returns the exit code.
 int runFrames(GLFWwindow* window, WindowEvents& events, EditorSession& s,
@@ -738,6 +828,10 @@ int runFrames(GLFWwindow* window, WindowEvents& events, EditorSession& s,
   bool ask_to_quit = false;
   bool quit_confirmed = false;
   RunProgress run;
+  if (options.bench) run.bench = std::make_unique<EditorBench>(options.frames);
+  s.profile_enabled = options.bench;
+  s.renderer.setProfile(s.profile_enabled ? &s.profile : nullptr);
+  Redraw redraw;
   while (true) {
     if (glfwWindowShouldClose(window)) {
       // Unsaved changes: ask first (never in headless runs).
@@ -745,41 +839,49 @@ int runFrames(GLFWwindow* window, WindowEvents& events, EditorSession& s,
       glfwSetWindowShouldClose(window, GLFW_FALSE);
       ask_to_quit = true;
     }
+    // Headless runs count frames and never sleep, but for the benchmark's paused scene.
+    const bool may_sleep = !headless || (run.bench && run.bench->phase() == BenchPhase::kPaused);
+    redraw.after_wait = may_sleep && redraw.settle <= 0;
+    if (redraw.after_wait) waitForChange(window, s, events, redraw);
     glfwPollEvents();
     const Clock::time_point now = Clock::now();
-    const double dt = headless ? kScreenshotDt : std::chrono::duration<double>(now - last).count();
-    if (run.frame > 0) s.frame_times.add(std::chrono::duration<double>(now - last).count());
+    const double interval = std::chrono::duration<double>(now - last).count();
+    const double dt = headless && !redraw.after_wait ? kScreenshotDt : interval;
+    if (run.frame > 0 && !redraw.after_wait) s.frame_times.add(interval);
+    // Every frame, counted or not (a screenshot of a search waits for its generations drawing).
+    if (!redraw.after_wait && std::chrono::duration<double>(last - start).count() > 1.0) {
+      run.longest_after_first_s = std::max(run.longest_after_first_s, interval);
+      ++run.frames_after_first;
+    }
     last = now;
+    s.profile.beginFrame();
     s.state.log.clock_s = std::chrono::duration<double>(now - start).count();
     openDropped(s, events);
     advancePlayback(s.state, std::min(dt, 0.25));
     const bool unsaved = hasUnsavedChanges(s.state);
     setWindowTitle(window, s.state, unsaved);
+    if (s.profile_enabled) s.profile.mark(FrameStage::kEvents);
 
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const Layout layout = computeLayout(display, user_layout);
-    if (drawPanels(s, layout, events, ask_to_quit)) {
-      quit_confirmed = true;
-      glfwSetWindowShouldClose(window, GLFW_TRUE);
-    }
-    if (!headless) followResizes(layout, display, user_layout);
-    // One undo step per finished edit: nothing is recorded while a slider is being dragged.
-    if (!ImGui::IsAnyItemActive()) recordHistory(s.state);
-    handleViewportMouse(s.camera, s.drag, layout.viewport);
-    const Scene scene = buildScene(s.state);
-    pickClicked(s, scene, layout.viewport);
-    updateCamera(s.camera, s.state, scene, dt);
-    drawOverlay(s.state, layout.viewport, s.frame_times, s.renderer.ready());
-    ImGui::Render();
-    const Framebuffer fb = renderFrame(window, s, layout, scene);
-
+    const glm::vec3 camera_before = s.camera.target;
+    Layout layout;
+    const Framebuffer fb = drawFrame(window, s, events, user_layout, headless, dt, ask_to_quit,
+                                     quit_confirmed, layout);
     const double elapsed_s = std::chrono::duration<double>(now - start).count();
     const bool done = countFrame(run, s, options, headless, elapsed_s, window);
     finishHeadlessFrame(run, s, options, layout, fb, done, window);
     glfwSwapBuffers(window);
+    if (s.profile_enabled) s.profile.mark(FrameStage::kSwap);
+    paceWhileWaiting(s, options, headless, run, now);
+    if (run.bench) {
+      const double end_s = std::chrono::duration<double>(Clock::now() - start).count();
+      run.bench->frameDrawn(s.state, interval, end_s - elapsed_s, end_s,
+                            s.state.evolution.poll_wait_s, s.profile);
+    }
+    redraw.settle =
+        frameWasStill(s, events, redraw, camera_before) ? redraw.settle - 1 : Redraw::kSettleFrames;
+    redraw.input_seen = events.input;
+    redraw.snapshot_seen = s.state.evolution.snapshot.get();
+    redraw.log_seen = s.state.log.lines().size();
     autosave(autosaved, s, unsaved, now);
   }
   return run.exit_code;

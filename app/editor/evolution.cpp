@@ -1,5 +1,7 @@
 #include "editor/evolution.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -22,7 +24,42 @@ std::string termsLine(const search::FitnessTerms& t) {
                                           : std::string(line);
 }
 
+// The search `project` describes on the loaded clip, with the Style panel's measured styles.
+Result<pipeline::SearchSetup> prepareEditorSearch(EditorState& state, const app::Project& project) {
+  std::vector<const spectral::StyleVector*> styles;
+  for (const app::StylePair& pair : project.edits.styles) {
+    const Result<spectral::StyleVector>& style = styleOf(state, pair);
+    if (!style.ok()) return Status::error("style '" + pair.label + "': " + style.message());
+    styles.push_back(&style.value());
+  }
+  return pipeline::prepareSearch(state.asset->skeleton, *state.clip(), project, &styles);
+}
+
 }  // namespace
+
+int editorSearchThreads() {
+  return std::max(search::hardwareThreads() - 1, 1);
+}
+
+void resolvePopulation(EditorState& state) {
+  EvolutionState& evolution = state.evolution;
+  if (state.clip() == nullptr || !state.analysis) {
+    evolution.resolved_key.clear();
+    evolution.resolved_population = evolution.resolved_coordinates = 0;
+    return;
+  }
+  const app::Project project = captureProject(state);
+  std::string key = app::settingsJson(project);
+  if (key == evolution.resolved_key) return;
+  evolution.resolved_key = std::move(key);
+  evolution.resolved_population = evolution.resolved_coordinates = 0;
+  Result<pipeline::SearchSetup> setup = prepareEditorSearch(state, project);
+  if (!setup.ok()) return;
+  evolution.resolved_coordinates = setup.value().problem.layout.size();
+  Result<std::unique_ptr<search::Session>> session = search::Session::create(
+      std::move(setup.value().problem), pipeline::evolveSettings(project.search));
+  if (session.ok()) evolution.resolved_population = session.value()->population();
+}
 
 bool startEvolution(EditorState& state, int generations) {
   EvolutionState& evolution = state.evolution;
@@ -34,17 +71,7 @@ bool startEvolution(EditorState& state, int generations) {
   stopEvolution(state);
   // The project as it is now, through the engine's one path to a search (as `sinew evolve`).
   const app::Project project = captureProject(state);
-  std::vector<const spectral::StyleVector*> styles;
-  for (const app::StylePair& pair : project.edits.styles) {
-    const Result<spectral::StyleVector>& style = styleOf(state, pair);
-    if (!style.ok()) {
-      state.log.error("evolve: style '" + pair.label + "': " + style.message());
-      return false;
-    }
-    styles.push_back(&style.value());
-  }
-  Result<pipeline::SearchSetup> setup =
-      pipeline::prepareSearch(state.asset->skeleton, *clip, project, &styles);
+  Result<pipeline::SearchSetup> setup = prepareEditorSearch(state, project);
   if (!setup.ok()) {
     state.log.error("evolve: " + setup.message());
     return false;
@@ -53,9 +80,12 @@ bool startEvolution(EditorState& state, int generations) {
   if (generations > 0) {
     settings.generations = generations;
     settings.minutes = 0.0;
+  } else {
+    settings.generations = std::max(evolution.settings.generations, 0);
   }
   settings.record_population = true;  // the viewport replays the population
   settings.nice = 10;  // the UI thread draws first; the search takes what the frames leave
+  settings.threads = std::max(evolution.threads, 0);
   Result<std::unique_ptr<search::Session>> session =
       search::Session::create(std::move(setup.value().problem), settings);
   if (!session.ok()) {
@@ -66,22 +96,28 @@ bool startEvolution(EditorState& state, int generations) {
   evolution.started = project;
   evolution.reported_generation = 0;
   evolution.selected = -1;
+  evolution.longest_poll_wait_s = evolution.poll_wait_s = 0.0;
+  evolution.slow_polls = 0;
   evolution.snapshot = evolution.session->snapshot();
   evolution.session->start();
   char budget[48];
-  if (generations > 0)
-    std::snprintf(budget, sizeof budget, "%d generations", generations);
+  if (settings.minutes <= 0.0)
+    std::snprintf(budget, sizeof budget, "%d generations", settings.generations);
+  else if (settings.generations > 0)
+    std::snprintf(budget, sizeof budget, "%.1f min or %d generations", settings.minutes,
+                  settings.generations);
   else
     std::snprintf(budget, sizeof budget, "%.1f min", settings.minutes);
   char line[320];
   std::snprintf(line, sizeof line,
                 "evolve %s: %d coordinates, %s, population %d, %s, %.0f s window on %s, %s on %d "
-                "threads",
+                "of %d threads",
                 setup.value().what.c_str(), evolution.session->problem().layout.size(),
                 settings.optimizer == search::OptimizerKind::kGa ? "genetic algorithm" : "CMA-ES",
                 evolution.session->population(), budget, project.physics.window_s,
                 app::terrainText(project.physics.terrain).c_str(),
                 project.search.no_prior ? "no prior" : "seeded from the model",
+                settings.threads > 0 ? settings.threads : search::hardwareThreads(),
                 search::hardwareThreads());
   state.log.info(line);
   return true;
@@ -127,7 +163,13 @@ void setEvolutionWeights(EditorState& state) {
 void pollEvolution(EditorState& state) {
   EvolutionState& evolution = state.evolution;
   if (!evolution.session) return;
-  evolution.snapshot = evolution.session->snapshot();
+  const auto asked = std::chrono::steady_clock::now();
+  std::shared_ptr<const search::Snapshot> latest = evolution.session->snapshot();
+  evolution.poll_wait_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+  evolution.longest_poll_wait_s = std::max(evolution.longest_poll_wait_s, evolution.poll_wait_s);
+  if (evolution.poll_wait_s > kSlowPoll_s) ++evolution.slow_polls;
+  evolution.snapshot = std::move(latest);
   const search::Snapshot& snap = *evolution.snapshot;
   for (; evolution.reported_generation < static_cast<int>(snap.history.size());
        ++evolution.reported_generation) {
@@ -181,10 +223,11 @@ bool exportEvolutionLoop(EditorState& state, int strides, bool in_place) {
   std::snprintf(line, sizeof line,
                 "export: wrote best_loop.bvh, best_loop.glb and loop.json to %s: %d strides of "
                 "%.3f s, foot slide %.2f -> %.2f cm per contact",
-                evolution.export_dir.c_str(), loop.strides, loop.period_s,
-                loop.slideBeforeMeanCm(), loop.slideAfterMeanCm());
+                evolution.export_dir.c_str(), loop.strides, loop.period_s, loop.slideBeforeMeanCm(),
+                loop.slideAfterMeanCm());
   state.log.info(line);
-  for (const std::string& style : files.value().style.lines()) state.log.info("loop style " + style);
+  for (const std::string& style : files.value().style.lines())
+    state.log.info("loop style " + style);
   return true;
 }
 

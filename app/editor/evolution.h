@@ -23,6 +23,8 @@ struct EvolutionSettings {
   pipeline::SearchSettings search;    // budget, population, optimiser, seed, weights (the weights
                                       // are live while a search runs)
   int shown = 8;                      // individuals drawn in the viewport, best first
+  int generations = 0;  // budget in generations beside the minutes (whichever ends first); 0:
+                        // the minutes only. Not a project setting (`sinew evolve --generations`)
 };
 
 struct EvolutionState {
@@ -32,15 +34,42 @@ struct EvolutionState {
   std::shared_ptr<const search::Snapshot> snapshot;  // the latest published
   int reported_generation = 0;                       // the last generation written to the log
   bool show_population = true;                       // draw the population's runs beside the clip
+  int threads = 0;         // evaluation threads of the next search, 0: every core (the window
+                           // sets editorSearchThreads(); headless runs keep every core)
   int selected = -1;       // the individual clicked in the viewport (index in the snapshot's
                            // population), -1 for none; cleared when a new generation arrives
   std::string export_dir;  // where "Export best" writes; default beside the opened file
+  // How long pollEvolution waited for the session's snapshot (its lock), seconds: the last
+  // call, the longest since the search started, and the polls that took over kSlowPoll_s.
+  double poll_wait_s = 0.0;
+  double longest_poll_wait_s = 0.0;
+  int slow_polls = 0;
+  // The population the next search will use and its coordinates (resolvePopulation), for the
+  // project whose settings JSON is resolved_key; 0 when it cannot be built.
+  std::string resolved_key;
+  int resolved_population = 0;
+  int resolved_coordinates = 0;
 };
+
+// A poll of the snapshot that takes longer than this waited on the search (the lock is held
+// for a pointer copy, well under a microsecond, when nothing else holds it).
+inline constexpr double kSlowPoll_s = 0.05;
+
+// The evaluation threads an editor's search takes: one fewer than the cores (at least one), so
+// that the UI thread and the GL driver keep a core while the window draws; `sinew evolve` keeps
+// them all.
+int editorSearchThreads();
+
+// Resolves the population a search started now would use ("0: the optimiser's default" made a
+// number: CMA-ES 4 + 3 ln n of the controller's n coordinates) into resolved_population, building
+// the search's problem again only when the project changed since the last call.
+void resolvePopulation(EditorState& state);
 
 // Starts a search on the loaded clip with the project as the editor has it now (captureProject),
 // through the engine's pipeline::prepareSearch, as `sinew evolve PROJECT` does; says in the log
 // why not when it cannot (nothing loaded, no analysis, a plan that does not build). Replaces a
-// running search. `generations` > 0: that budget instead of the settings' minutes.
+// running search. `generations` > 0: that budget instead of the settings' minutes; else the
+// settings' minutes and their `generations` (when > 0), whichever ends first.
 bool startEvolution(EditorState& state, int generations = 0);
 void pauseEvolution(EditorState& state);
 void resumeEvolution(EditorState& state);

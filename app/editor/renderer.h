@@ -16,6 +16,7 @@
 
 #include "editor/camera.h"
 #include "editor/editor_state.h"
+#include "editor/frame_stats.h"
 #include "editor/gl.h"
 #include "editor/scene.h"
 #include "sinew/core/status.h"
@@ -50,6 +51,10 @@ class Renderer {
   // use), for the Log.
   std::vector<LogLine> takeMessages();
 
+  // While set (the benchmark), draw() finishes the GL work of the shadow pass and of the 3D view
+  // (glFinish: llvmpipe rasterises when the work is flushed) and marks both stages in `profile`.
+  void setProfile(StageProfile* profile) { profile_ = profile; }
+
  private:
   struct GpuMesh {
     GLuint vao = 0, vbo = 0, ebo = 0, texture = 0;
@@ -79,9 +84,11 @@ class Renderer {
   void releaseMeshes();
   Light fitLight(const Scene& scene) const;
   void renderShadowMap(const Scene& scene, const Light& light);
+  void drawView(const ViewportRect& rect, const OrbitCamera& camera, const Scene& scene, bool grid,
+                bool shadows, const Light& light);
   void setLighting(GLuint program, const OrbitCamera& camera, const Light& light);
   void drawCapsules(GLuint program, std::span<const CapsuleInstance> capsules,
-                    const glm::mat4& view_proj, bool translucent);
+                    const glm::mat4& view_proj, bool translucent, int coarsest = 0);
   void drawSkinned(GLuint program, const Scene& scene, const glm::mat4& view_proj, bool shade);
   void release();
 
@@ -105,6 +112,7 @@ class Renderer {
   std::shared_ptr<const motion::GltfSource> meshes_source_;  // whose meshes are uploaded
   const motion::MotionAsset* meshes_asset_ = nullptr;
   std::vector<LogLine> messages_;
+  StageProfile* profile_ = nullptr;
 };
 
 }  // namespace sinew::editor

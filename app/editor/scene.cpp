@@ -22,7 +22,7 @@ const glm::vec4 kModelSelectedColor{1.00f, 0.80f, 0.30f, 0.55f};
 const glm::vec4 kBestColor{0.55f, 1.00f, 0.45f, 0.85f};        // the population's best run
 const glm::vec4 kIndividualColor{0.72f, 0.64f, 1.00f, 0.55f};  // the others
 const glm::vec4 kPickedColor{1.00f, 0.95f, 0.80f, 0.90f};      // the one clicked
-const float kXrayOpacity = 0.6f;   // the skeleton drawn over the mesh
+const float kXrayOpacity = 0.6f;                               // the skeleton drawn over the mesh
 const size_t kBoundsSamples = 4096;  // skinned vertices per mesh looked at for the bounds
 
 bool containsNoCase(const std::string& text, const char* word) {
@@ -125,7 +125,8 @@ void appendBones(const motion::Skeleton& skeleton, std::span<const glm::dmat4> w
     if (end_sites && skeleton.end_sites[j]) {
       const glm::vec3 e = glm::vec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0)) + offset;
       const float length = glm::length(e - p);
-      if (length > 1e-4f) out.push_back({p, std::min(radius * 0.8f, 0.5f * length), e, 0.0f, color});
+      if (length > 1e-4f)
+        out.push_back({p, std::min(radius * 0.8f, 0.5f * length), e, 0.0f, color});
     }
   }
 }
@@ -240,7 +241,8 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
   const glm::vec3 side =
       sideOfTravel(state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0));
   const glm::vec3 forward(-side.z, 0.0f, side.x);
-  constexpr size_t kColumns = 8;  // the default 8 in one row; 16 in two
+  constexpr size_t kColumns = 8;                        // the default 8 in one row; 16 in two
+  constexpr float kLaneWidth = 0.6f, kRowDepth = 1.2f;  // of the character's height
   const size_t shown =
       std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
   std::vector<glm::dmat4> run_world(static_cast<size_t>(figure.joints));
@@ -251,11 +253,13 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
     const double t = std::fmod(state.playback.time_s, duration);
     const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
     motion::worldTransforms(figure.asset.skeleton, run, f, run_world);
-      // Travel removed (the run stays beside the clip), height and falls kept.
+    // Travel removed (the run stays in its lane beside the clip), height and falls kept.
     glm::vec3 offset = scene.root - glm::vec3(run_world[figure.pelvis][3]);
     offset.y = 0.0f;
-    offset -= side * (0.5f * figure.height * static_cast<float>(rank % kColumns + 1));
-    offset -= forward * (0.7f * figure.height * static_cast<float>(rank / kColumns));
+    // Lanes: a body is about 0.3 of its height wide and, fallen, about its height long, so 0.6
+    // of a height between lanes and 1.2 between rows keep runs (and falls) from crossing.
+    offset -= side * (kLaneWidth * figure.height * static_cast<float>(rank % kColumns + 1));
+    offset -= forward * (kRowDepth * figure.height * static_cast<float>(rank / kColumns));
     const size_t first = population.size();
     const bool picked = static_cast<int>(order[rank]) == evolution.selected;
     appendBones(figure.asset.skeleton, run_world, offset, figure.radius * 0.9f, false, -1,

@@ -484,8 +484,19 @@ TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
   }
   editor::stopEvolution(state);
   ASSERT_GE(state.evolution.snapshot->generation, 1);
+  // Polling never waited for the search: a generation is published without holding the UI.
+  EXPECT_EQ(state.evolution.slow_polls, 0) << state.evolution.longest_poll_wait_s << " s";
   const editor::Scene scene = editor::buildScene(state);
   ASSERT_EQ(scene.individuals.size(), 8u);  // the whole population is drawn (shown 8)
+  // Each in its own lane: no two runs' footprints on the ground overlap.
+  for (size_t i = 0; i < scene.individuals.size(); ++i) {
+    for (size_t j = i + 1; j < scene.individuals.size(); ++j) {
+      const editor::PickBox& a = scene.individuals[i];
+      const editor::PickBox& b = scene.individuals[j];
+      const bool apart = a.hi.x < b.lo.x || b.hi.x < a.lo.x || a.hi.z < b.lo.z || b.hi.z < a.lo.z;
+      EXPECT_TRUE(apart) << "runs " << a.individual << " and " << b.individual << " overlap";
+    }
+  }
   editor::OrbitCamera camera;
   camera.pitch = 1.5f;  // from above, so that neighbours do not hide one another
   camera.distance = 6.0f;
@@ -503,6 +514,25 @@ TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
   }
   // Straight up from the camera: nobody.
   EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), glm::vec3(0.0f, 1.0f, 0.0f)), -1);
+}
+
+TEST_F(EditorModelTest, ThePopulationFieldShowsWhatTheSearchWillUseAndGenerationsBoundIt) {
+  // 0 is "the optimiser's default": resolved to the number the search takes (CMA-ES 4 + 3 ln n).
+  editor::resolvePopulation(state);
+  const int n = state.evolution.resolved_coordinates;
+  ASSERT_GT(n, 0);
+  EXPECT_EQ(state.evolution.resolved_population,
+            4 + static_cast<int>(std::floor(3.0 * std::log(static_cast<double>(n)))));
+  state.evolution.settings.generations = 3;  // beside the minutes: whichever ends first
+  ASSERT_TRUE(editor::startEvolution(state));
+  EXPECT_EQ(state.evolution.session->population(), state.evolution.resolved_population);
+  EXPECT_EQ(state.evolution.session->settings().generations, 3);
+  EXPECT_GT(state.evolution.session->settings().minutes, 0.0);
+  editor::stopEvolution(state);
+  // A K change is another search: fewer coefficients, re-resolved.
+  editor::setJointK(state, std::vector<int>(state.analysis->joint_k.size(), 1));
+  editor::resolvePopulation(state);
+  EXPECT_LT(state.evolution.resolved_coordinates, n);
 }
 
 TEST_F(EditorModelTest, AutoKMeetsItsToleranceWithFewerCoefficientsAndTheRankingPutsTheHipsHigh) {

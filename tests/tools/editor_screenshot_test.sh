@@ -94,10 +94,24 @@ PY
     png="$work/editor_evolve.png"
     out="$work/evolve.log"
     rm -f "$png"
+    # 16 characters shown while the second generation is published (issue 16): the UI thread
+    # must never wait for the search (every poll of its snapshot under 50 ms); the longest frame
+    # after the first second is printed, and bounded only by SINEW_FRAME_BOUND_MS when set (a
+    # generous bound, not the 250 ms goal: speed is measured by editor_bench, and this test also
+    # runs beside others and under the sanitizers).
     "${xvfb[@]}" "$sinew" edit --evolve --screenshot "$png" --frames 5 --evolve-generations 2 \
-      > "$out" 2>&1 || { cat "$out"; echo "FAIL: the editor exited non-zero"; exit 1; }
-    grep -E 'evolve: |generation [12] ' "$out"
+      --shown 16 > "$out" 2>&1 || { cat "$out"; echo "FAIL: the editor exited non-zero"; exit 1; }
+    grep -E 'evolve: |generation [12] |longest frame' "$out"
     grep -q 'generation 2 (' "$out" || { echo "FAIL: no second generation in the log"; exit 1; }
+    grep -q ', 0 polls over 50 ms' "$out" \
+      || { echo "FAIL: the UI thread waited for the search's snapshot"; exit 1; }
+    longest=$(sed -n 's/.*longest frame after the first second \([0-9.]*\) ms.*/\1/p' "$out")
+    [ -n "$longest" ] || { echo "FAIL: no longest frame reported"; exit 1; }
+    if [ -n "${SINEW_FRAME_BOUND_MS:-}" ] &&
+       awk -v l="$longest" -v b="$SINEW_FRAME_BOUND_MS" 'BEGIN { exit !(l > b) }'; then
+      echo "FAIL: a frame took $longest ms (bound $SINEW_FRAME_BOUND_MS ms)"; exit 1
+    fi
+    awk -v l="$longest" 'BEGIN { print (l <= 250 ? "within" : "over") " the 250 ms goal: " l " ms" }'
     python3 - "$png" <<'PY'
 import struct, sys, zlib
 data = open(sys.argv[1], "rb").read()
@@ -135,15 +149,17 @@ if green < 200:
 PY
     ;;
   bench)
-    # The frame-time benchmark: 16 characters of the population replaying while the search runs,
-    # against the clip alone in the same process; prints its figures. The panels are saved too
-    # (the user guide's pictures): each must exist.
+    # The frame-time benchmark (bench/CMakeLists.txt's editor_bench, labelled bench): the clip
+    # alone, 16 characters while the search runs, the same scene paused, and the search's rate
+    # with the editor drawing and paused; prints its figures. The panels are saved too (the user
+    # guide's pictures): each must exist.
     out="$work/bench.txt"
-    "${xvfb[@]}" "$sinew" edit --bench --shown 16 --frames 40 --evolve-minutes 1 \
+    "${xvfb[@]}" "$sinew" edit --bench --shown 16 --frames 60 --evolve-minutes 10 \
       --screenshot "$work/bench.png" --panel-shots "$work/panels" | tee "$out"
     grep -q "the clip alone: *median" "$out" || { echo "FAIL: no idle frame time"; exit 1; }
     grep -q "16 characters while the search runs: *median" "$out" || { echo "FAIL: no search frame time"; exit 1; }
-    grep -q "ratio (search / alone)" "$out" || { echo "FAIL: no ratio"; exit 1; }
+    grep -q "paused, while the search runs: *median" "$out" || { echo "FAIL: no paused frame time"; exit 1; }
+    grep -q "with the editor drawing" "$out" || { echo "FAIL: no evaluation rates"; exit 1; }
     for panel in files body log timeline spectrum style evolve export viewport; do
       test -s "$work/panels/$panel.png" || { echo "FAIL: no $panel.png"; exit 1; }
     done

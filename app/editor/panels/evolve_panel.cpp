@@ -82,20 +82,36 @@ void plotHistory(const search::Snapshot& snap) {
 // The settings cannot change under a running search: one line says what they are.
 void drawRunningSettings(const EvolutionState& evolution) {
   const search::EvolveSettings& used = evolution.session->settings();
-  ImGui::TextDisabled("%s, population %d, seed %llu, %.1f min, %.0f s window%s",
+  char budget[64];
+  if (used.minutes <= 0.0)
+    std::snprintf(budget, sizeof budget, "%d generations", used.generations);
+  else if (used.generations > 0)
+    std::snprintf(budget, sizeof budget, "%.1f min or %d generations", used.minutes,
+                  used.generations);
+  else
+    std::snprintf(budget, sizeof budget, "%.1f min", used.minutes);
+  ImGui::TextDisabled("%s, population %d, seed %llu, %s, %.0f s window%s",
                       used.optimizer == search::OptimizerKind::kGa ? "GA" : "CMA-ES",
                       evolution.session->population(), static_cast<unsigned long long>(used.seed),
-                      used.minutes, evolution.session->problem().simulation.seconds,
+                      budget, evolution.session->problem().simulation.seconds,
                       evolution.started.search.no_prior ? ", no prior" : "");
 }
 
 // Budget, window, prior, optimiser, population, seed, trials and restarts of the next search.
-void drawSearchSettings(EvolutionState& evolution) {
+void drawSearchSettings(EditorState& state) {
+  EvolutionState& evolution = state.evolution;
   ImGui::SetNextItemWidth(120.0f);
   float minutes = static_cast<float>(evolution.settings.search.minutes);
   if (ImGui::SliderFloat("minutes", &minutes, 0.5f, 30.0f, "%.1f"))
     evolution.settings.search.minutes = minutes;
   ImGui::SameLine();
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt("generations", &evolution.settings.generations, 1, 10);
+  evolution.settings.generations = std::clamp(evolution.settings.generations, 0, 100000);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "The budget in generations (0: the minutes only); the search ends at "
+        "whichever comes first");
   ImGui::SetNextItemWidth(100.0f);
   float window = static_cast<float>(evolution.settings.physics.window_s);
   if (ImGui::SliderFloat("window s", &window, 2.0f, 20.0f, "%.0f"))
@@ -110,10 +126,21 @@ void drawSearchSettings(EvolutionState& evolution) {
     if (ImGui::Selectable("GA (baseline)", ga)) optimizer = search::OptimizerKind::kGa;
     ImGui::EndCombo();
   }
+  // 0 is "the optimiser's default"; the field shows the number the search will use.
+  int& population = evolution.settings.search.population;
+  // Rebuilt when the project changed, not while a slider is dragged.
+  if (population == 0 && !ImGui::IsAnyItemActive()) resolvePopulation(state);
+  const int resolved = population > 0 ? population : evolution.resolved_population;
+  int shown_population = resolved > 0 ? resolved : population;
   ImGui::SetNextItemWidth(90.0f);
-  ImGui::InputInt("population", &evolution.settings.search.population, 1, 4);
-  evolution.settings.search.population = std::clamp(evolution.settings.search.population, 0, 1000);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the optimiser's default (CMA-ES 4 + 3 ln n)");
+  if (ImGui::InputInt(population > 0 ? "population###population" : "population (auto)###population",
+                      &shown_population, 1, 4))
+    population = std::clamp(shown_population, 0, 1000);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(population > 0 ? "Individuals per generation (0: the optimiser's default)"
+                                     : "The optimiser's default for this clip's %d coordinates "
+                                       "(CMA-ES 4 + 3 ln n; GA 32); type a number to set one",
+                      evolution.resolved_coordinates);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
   int seed = static_cast<int>(evolution.settings.search.seed);
@@ -121,17 +148,21 @@ void drawSearchSettings(EvolutionState& evolution) {
     evolution.settings.search.seed = static_cast<std::uint64_t>(std::max(seed, 0));
   ImGui::SetNextItemWidth(90.0f);
   ImGui::InputInt("trials", &evolution.settings.search.trials, 1, 1);
-  evolution.settings.search.trials = std::clamp(evolution.settings.search.trials, 1, search::kMaxTrials);
+  evolution.settings.search.trials =
+      std::clamp(evolution.settings.search.trials, 1, search::kMaxTrials);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Runs per individual: the unpushed one and trials - 1 pushed to the left, "
-                      "right, back and forward; the cost is their mean (slower, sturdier gaits)");
+    ImGui::SetTooltip(
+        "Runs per individual: the unpushed one and trials - 1 pushed to the left, "
+        "right, back and forward; the cost is their mean (slower, sturdier gaits)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90.0f);
   ImGui::InputInt("restart after", &evolution.settings.search.restart_after, 1, 5);
-  evolution.settings.search.restart_after = std::clamp(evolution.settings.search.restart_after, 0, 100000);
+  evolution.settings.search.restart_after =
+      std::clamp(evolution.settings.search.restart_after, 0, 100000);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("CMA-ES: start again from the clip's DFT after this many generations "
-                      "without a better best, keeping the best (0: never)");
+    ImGui::SetTooltip(
+        "CMA-ES: start again from the clip's DFT after this many generations "
+        "without a better best, keeping the best (0: never)");
 }
 
 // Live: a running search takes them from its next generation.
@@ -179,10 +210,23 @@ void drawProgress(EvolutionState& evolution, search::SessionState run_state, boo
               wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
   if (running && evolution.session) {
     // The budget spent (minutes of wall time since the start, as the session counts them).
-    const double budget_s = evolution.session->settings().minutes * 60.0;
-    const double spent = budget_s > 0.0 ? std::clamp(wall / budget_s, 0.0, 1.0) : 0.0;
-    char overlay[64];
-    std::snprintf(overlay, sizeof overlay, "%.0f / %.0f s of the budget", wall, budget_s);
+    // The budget spent: the larger share of its minutes and of its generations.
+    const search::EvolveSettings& used = evolution.session->settings();
+    const double budget_s = used.minutes * 60.0;
+    const double by_time = budget_s > 0.0 ? std::clamp(wall / budget_s, 0.0, 1.0) : 0.0;
+    const double by_generations =
+        used.generations > 0 ? std::clamp(double(snap.generation) / used.generations, 0.0, 1.0)
+                             : 0.0;
+    const double spent = std::max(by_time, by_generations);
+    char overlay[96];
+    if (used.generations > 0 && budget_s > 0.0)
+      std::snprintf(overlay, sizeof overlay, "%.0f / %.0f s, generation %d / %d", wall, budget_s,
+                    snap.generation, used.generations);
+    else if (used.generations > 0)
+      std::snprintf(overlay, sizeof overlay, "generation %d / %d", snap.generation,
+                    used.generations);
+    else
+      std::snprintf(overlay, sizeof overlay, "%.0f / %.0f s of the budget", wall, budget_s);
     ImGui::ProgressBar(static_cast<float>(spent), ImVec2(-1.0f, 0.0f), overlay);
   }
   if (snap.best_point.empty()) return;
@@ -232,7 +276,7 @@ void drawEvolvePanel(EditorState& state) {
   if (running && evolution.session) {
     drawRunningSettings(evolution);
   } else {
-    drawSearchSettings(evolution);
+    drawSearchSettings(state);
   }
   drawFitnessWeights(state);
   drawRunButtons(state, run_state, running);

@@ -1,6 +1,7 @@
 // Timeline: play/pause, frame stepping, scrubbing in frames (seconds shown), speed, loop, and what
-// the viewport shows (original, reconstructed model, beside or overlaid, camera follow, shadows,
-// a glTF character's skinned mesh and its skeleton over it).
+// the viewport shows (original, reconstructed model (the target), the search's simulated runs,
+// beside or overlaid, camera follow, shadows, a glTF character's skinned mesh and its skeleton over
+// it).
 #include <algorithm>
 #include <cmath>
 
@@ -90,6 +91,15 @@ void drawTimelinePanel(EditorState& state) {
   ImGui::Checkbox("Beside", &view.model_beside);
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Off: the model is overlaid on the original");
+  ImGui::SameLine();
+  const bool has_runs =
+      state.evolution.snapshot && !state.evolution.snapshot->population_motions.empty();
+  ImGui::BeginDisabled(!has_runs);
+  ImGui::Checkbox("Simulated", &state.evolution.show_population);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(has_runs ? "The search's last generation, replayed beside the clip"
+                               : "No search has finished a generation yet");
   ImGui::SameLine();
   ImGui::TextDisabled("|");
   ImGui::SameLine();
