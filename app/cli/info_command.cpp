@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "sinew/core/text.h"
+#include "sinew/motion/anatomy.h"
 
 namespace sinew::app {
 namespace {
@@ -35,15 +36,51 @@ nlohmann::json clipJson(const motion::Clip& clip) {
           {"duration_s", clip.duration()}};
 }
 
+// The figure's family, size and mass (motion::estimateBody, what the body plan weighs it by) in
+// the chosen clip, or the rest pose when there is none.
+motion::BodyEstimate bodyOf(const motion::MotionAsset& asset, int selected) {
+  const motion::Clip rest = motion::restClip(asset.skeleton, 1, 1.0 / 30.0);
+  const motion::Clip& clip = selected >= 0 ? asset.clips[selected] : rest;
+  std::vector<motion::Foot> feet;
+  if (auto found = motion::findFeet(asset.skeleton, clip); found.ok()) feet = found.value();
+  return motion::estimateBody(asset.skeleton, clip, feet);
+}
+
+// "stature 1.63 m (the joints reach 1.33 m)": the height a person means, then what was measured.
+std::string heightText(const motion::BodyEstimate& body) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2);
+  if (body.stature_m > 0.0)
+    text << "stature " << body.stature_m << " m (the joints reach " << body.extent_m << " m)";
+  else if (body.trunk_length_m > 0.0)
+    text << body.figure.hip_height << " m at the hips, trunk " << body.trunk_length_m
+         << " m (the joints reach " << body.extent_m << " m)";
+  else
+    text << "the joints reach " << body.extent_m << " m";
+  return text.str();
+}
+
+void addBodyJson(const motion::BodyEstimate& body, nlohmann::json& info) {
+  info["family"] = body.figure.human ? "human" : motion::familyName(body.figure.family);
+  info["height_m"] = body.stature_m > 0.0 ? body.stature_m : body.extent_m;
+  info["joint_extent_m"] = body.extent_m;
+  info["hip_height_m"] = body.figure.hip_height;
+  info["leg_length_m"] = body.leg_length_m;
+  if (body.stature_m > 0.0) info["stature_m"] = body.stature_m;
+  if (body.trunk_length_m > 0.0) info["trunk_length_m"] = body.trunk_length_m;
+  if (body.mass_kg > 0.0) info["mass_kg"] = body.mass_kg;
+  info["body"] = body.basis;
+}
+
 nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
   const motion::Skeleton& skeleton = asset.skeleton;
   nlohmann::json joints = nlohmann::json::array();
   int end_sites = 0;
   for (int j = 0; j < skeleton.jointCount(); ++j) {
-    nlohmann::json joint = {{"name", skeleton.names[j]},
-                            {"parent", skeleton.parents[j]},
-                            {"offset_m", {skeleton.offsets[j].x, skeleton.offsets[j].y,
-                                          skeleton.offsets[j].z}}};
+    nlohmann::json joint = {
+        {"name", skeleton.names[j]},
+        {"parent", skeleton.parents[j]},
+        {"offset_m", {skeleton.offsets[j].x, skeleton.offsets[j].y, skeleton.offsets[j].z}}};
     nlohmann::json channels = nlohmann::json::array();
     for (motion::ChannelType type : skeleton.channels[j].types) {
       channels.push_back(motion::channelName(type));
@@ -76,7 +113,6 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
       {"units", motion::unitName(asset.detection.frame.unit)},
       {"up_axis", motion::upAxisName(asset.detection.frame.up)},
       {"height_file_units", asset.detection.height_in_file_units},
-      {"height_m", asset.detection.height_m},
       {"detection", asset.detection.reason},
       {"joints", joints},
       {"animations", clips},
@@ -84,6 +120,7 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
       {"skins", asset.gltf ? asset.gltf->skin_count : 0},
       {"warnings", asset.warnings},
   };
+  addBodyJson(bodyOf(asset, selected), info);
   if (selected >= 0) {
     const motion::Clip& clip = asset.clips[selected];
     info["animation"] = clip.name;
@@ -99,25 +136,26 @@ nlohmann::json infoJson(const motion::MotionAsset& asset, int selected) {
 void printText(const motion::MotionAsset& asset, int selected, std::ostream& out) {
   const motion::Skeleton& skeleton = asset.skeleton;
   const nlohmann::json info = infoJson(asset, selected);
+  const motion::BodyEstimate body = bodyOf(asset, selected);
   out << asset.path.string() << '\n';
   out << "  format     " << (asset.gltf ? "glTF" : "BVH") << '\n';
   out << "  joints     " << skeleton.jointCount();
   if (!asset.gltf) {  // channels and End Sites are BVH notions
-    out << " (+" << info["end_site_count"].get<int>() << " end sites), "
-        << skeleton.channelCount() << " channels";
+    out << " (+" << info["end_site_count"].get<int>() << " end sites), " << skeleton.channelCount()
+        << " channels";
   }
   out << '\n';
   if (selected >= 0) {
     const motion::Clip& clip = asset.clips[selected];
     out << "  animation  '" << clip.name << "': " << clip.frame_count << " frames at "
-        << std::setprecision(6) << clip.fps() << " fps (frame time " << clip.frame_time
-        << " s), " << std::fixed << std::setprecision(3) << clip.duration() << " s\n"
+        << std::setprecision(6) << clip.fps() << " fps (frame time " << clip.frame_time << " s), "
+        << std::fixed << std::setprecision(3) << clip.duration() << " s\n"
         << std::defaultfloat;
   }
   out << "  units      " << motion::unitName(asset.detection.frame.unit) << ", up "
       << motion::upAxisName(asset.detection.frame.up) << "  (" << asset.detection.reason << ")\n"
-      << "  height     " << std::fixed << std::setprecision(2) << asset.detection.height_m
-      << " m\n" << std::defaultfloat;
+      << "  height     " << heightText(body) << '\n'
+      << "  body       " << body.basis << '\n';
   if (selected >= 0) out << "  glitches   " << glitchSummary(asset, selected) << '\n';
   if (asset.clips.size() > 1 || asset.gltf) {
     out << "  animations " << asset.clips.size() << '\n';
@@ -173,8 +211,9 @@ int runInfo(const InfoArgs& args) {
 
 void addInfoCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* command = app.add_subcommand("info", "Show a motion file's joints, channels, frames, "
-                                                 "units and (glTF) animations, skins and meshes");
+  CLI::App* command = app.add_subcommand("info",
+                                         "Show a motion file's joints, channels, frames, "
+                                         "units and (glTF) animations, skins and meshes");
   command->add_option("file", args->file, "A .bvh, .glb or .gltf file")->required();
   command->add_option("--animation", args->animation, "Which glTF animation to report (by name)");
   command->add_flag("--json", args->json, "Print machine-readable JSON");

@@ -213,10 +213,12 @@ int toeOrFoot(const Skeleton& skeleton, const Clip& clip) {
 // The issue's case on every real clip: a toe or foot turned 180 degrees for 1, 2 or 3 frames in
 // the middle of the analysed window is found (joint and frames exact) and repaired: the joint's
 // K = 5 error falls from tens of degrees (the issue: 46.8 against 0.7) to a third or less, the
-// clip's error comes back within 0.2 degrees, and the repaired clip's model is within 4 degrees
-// RMS of the clean clip's at that joint (printed: within 0.5 in most cases; at 30 fps a toe-off
-// lasts about three frames, and no interpolation recovers a snap it did not see). The clean clips
-// are as imported (CMU 131_01's thumb repaired).
+// clip's error comes back within 0.2 degrees, and the repaired clip's model is within 2 degrees
+// RMS of the clean clip's at that joint (measured: within 0.5 in 23 of 36 cases, at most 1.61).
+// The misses are the repairs of 2-3 frames of a toe-off at 24-30 fps: the repaired frames are
+// 2.3-7.3 degrees from the true ones, and the model moves by about a fifth of that. The Fox's
+// Walk and Run are single cycles (no stride to copy from), so only the cubic is there to fill
+// a snap it did not see. The clean clips are as imported (CMU 131_01's thumb repaired).
 TEST(Glitch, InjectedFlipsInRealClipsAreFoundAndRepaired) {
   SINEW_REQUIRE_SHARED_DATA();
   int checked = 0;
@@ -282,7 +284,7 @@ TEST(Glitch, InjectedFlipsInRealClipsAreFoundAndRepaired) {
         }
         EXPECT_LT(std::abs(again.value().total.rot_err_deg_rms - s.total.rot_err_deg_rms), 0.2)
             << named.name << " " << count;
-        EXPECT_LT(apart, 4.0) << named.name << " " << count;
+        EXPECT_LT(apart, 2.0) << named.name << " " << count;
         within += apart >= 0.0 && apart < 0.5 ? 1 : 0;
         ++checked;
       }

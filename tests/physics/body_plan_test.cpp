@@ -1,8 +1,8 @@
 #include "sinew/physics/body_plan.h"
 
 #include <cmath>
-#include <numbers>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -127,12 +127,12 @@ TEST(BodyPlan, RealGltfRigsHaveTheirBodiesSize) {
   std::printf("Fox by its shapes' volume: %.2f kg\n", fox_volume_kg);
   EXPECT_GT(fox_plan.value().size_m, 0.8);  // nose to hind paw in the Walk's first pose
   EXPECT_LT(fox_plan.value().size_m, 1.8);
-  // A red fox weighs 3-11 kg; the plan's is not yet a fox's, for reasons inside physics
-  // (body_plan.cpp, reported, not this change): its UpperArm joints and two named feet (the
-  // front paws are "Hand") make the human rule give it the human 70 kg, and by volume its
-  // capsules, whose radii are human fractions of the rig's size, weigh 92 kg. What the units
-  // fix does hold: tens of kilograms, not 95,537,128.
-  EXPECT_LT(fox_plan.value().total_mass_kg, 100.0);
+  // A red fox weighs 3-11 kg. Its UpperArm joints once made it a 70 kg human; anatomy names it
+  // a quadruped and weighs it by its trunk (anatomy.h). Its capsules, whose radii are human
+  // fractions of the rig's size, would weigh 92 kg by volume: they only share the mass out.
+  EXPECT_FALSE(fox_plan.value().human);
+  EXPECT_GT(fox_plan.value().total_mass_kg, 4.0);
+  EXPECT_LT(fox_plan.value().total_mass_kg, 8.0);
   EXPECT_LT(fox_volume_kg, 100.0);
 
   const motion::MotionAsset figure =
@@ -167,7 +167,8 @@ TEST(BodyPlan, BipedFromAssetHasHumanMassesHingedKneesAndBoxFeet) {
   for (const std::string& note : plan.notes) std::printf("  note: %s\n", note.c_str());
 
   EXPECT_TRUE(plan.human);
-  EXPECT_NEAR(plan.total_mass_kg, 70.0, 1e-9);
+  // 70 kg for 1.75 m at the same body-mass index: its thigh and shank, 0.84 m, make it 1.71 m.
+  EXPECT_NEAR(plan.total_mass_kg, 70.0 * std::pow(0.84 / 0.491 / 1.75, 2.0), 0.05);
   EXPECT_LT(static_cast<int>(plan.links.size()), skeleton.jointCount());
   ASSERT_EQ(static_cast<int>(plan.link_of_joint.size()), skeleton.jointCount());
   int feet = 0, knees = 0;
@@ -249,7 +250,8 @@ TEST(BodyPlan, CmuZeroLengthHipJointsMergeIntoThePelvis) {
 
 // The user's overrides win over the rules, and a name that is not a link is refused, named.
 TEST(BodyPlan, OverridesSetMassesJointTypesAndHingeLimits) {
-  const motion::MotionAsset asset = test_util::loadAsset(sinew::test::sourceDir() / "assets" / "biped_walk.bvh");
+  const motion::MotionAsset asset =
+      test_util::loadAsset(sinew::test::sourceDir() / "assets" / "biped_walk.bvh");
   ASSERT_FALSE(asset.clips.empty());
   const BodyPlan plain = buildBodyPlan(asset.skeleton, &asset.clips[0]).value();
   BodyPlanSettings settings;

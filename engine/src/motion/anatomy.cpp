@@ -1,9 +1,9 @@
 #include "sinew/motion/anatomy.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numeric>
-#include <cctype>
 #include <sstream>
 #include <string>
 
@@ -283,8 +283,8 @@ FrameDetection detectStatedFrame(const Skeleton& skeleton, const Clip& clip,
                                         : metres < ranges.other_height_max_m;
   if (!(figure.height > 0.0) || !plausible) {
     FrameDetection chosen = chooseUnit(figure, ranges, true);
-    chosen.reason = std::string("implausible in the file's ") +
-                    std::string(unitName(stated.unit)) + "; " + chosen.reason;
+    chosen.reason = std::string("implausible in the file's ") + std::string(unitName(stated.unit)) +
+                    "; " + chosen.reason;
     return chosen;
   }
   FrameDetection result;
@@ -627,7 +627,6 @@ Result<std::vector<Foot>> findFeet(const Skeleton& skeleton, const Clip& clip) {
   return feet;
 }
 
-
 Status SegmentMassTable::validate() const {
   const std::pair<const char*, double> fields[] = {
       {"head", head}, {"trunk", trunk}, {"upper_arm", upper_arm}, {"forearm", forearm},
@@ -642,7 +641,6 @@ Status SegmentMassTable::validate() const {
   if (!(sum > 0.0)) return Status::error("masses: the segment fractions sum to 0");
   return {};
 }
-
 
 // ---------------------------------------------------------------- masses
 
@@ -870,6 +868,135 @@ std::vector<glm::dvec3> centreOfMass(const Skeleton& skeleton, const Clip& clip,
     }
   }
   return com;
+}
+
+}  // namespace sinew::motion
+
+// ---------------------------------------------------------------- body size and mass
+
+namespace sinew::motion {
+namespace {
+
+constexpr double kLegOfStature = 0.530 - 0.039;  // Winter: hip joint less ankle height
+constexpr double kTopJointOfStature = 0.870;     // Winter: the chin
+
+// A leg's top joint, as massDistribution counts it: the joint above the foot joint's parent (the
+// thigh's, the hip), or the highest that exists.
+int legTop(const Skeleton& skeleton, int foot) {
+  int top = foot;
+  for (int k = 0; k < 2 && skeleton.parents[top] != kNoParent; ++k) top = skeleton.parents[top];
+  return top;
+}
+
+// The distance between the mid-points of the two pairs of leg tops, or failing pairs the largest
+// distance between two leg tops.
+double trunkLength(const Skeleton& skeleton, const std::vector<Foot>& feet,
+                   const std::vector<glm::dvec3>& world) {
+  std::vector<glm::dvec3> girdles;
+  for (size_t a = 0; a < feet.size(); ++a) {
+    const int b = feet[a].pair;
+    if (b <= static_cast<int>(a)) continue;
+    girdles.push_back(
+        0.5 * (world[legTop(skeleton, feet[a].joint)] + world[legTop(skeleton, feet[b].joint)]));
+  }
+  if (girdles.size() == 2) return glm::length(girdles[0] - girdles[1]);
+  double longest = 0.0;
+  for (const Foot& a : feet)
+    for (const Foot& b : feet)
+      longest = std::max(longest, glm::length(world[legTop(skeleton, a.joint)] -
+                                              world[legTop(skeleton, b.joint)]));
+  return longest;
+}
+
+// Whether the figure's topmost point in the first frame is an End Site with length (the top of
+// the head, as most rigs end their head) rather than a joint (Bandai's head joint, whose End Site
+// has none; a neck).
+bool topIsHeadTop(const Skeleton& skeleton, const Clip& clip) {
+  const int pelvis = pelvisJoint(skeleton);
+  const Poses first = computePoses(skeleton, clip, 1);
+  double top = -1e300;
+  bool end_site = false;
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    if (!inSubtree(skeleton, pelvis, j)) continue;
+    if (first.joint[j].y > top) top = first.joint[j].y, end_site = false;
+    const bool has_length = skeleton.end_sites[j] && glm::length(*skeleton.end_sites[j]) > 0.0;
+    if (has_length && first.site[j].y > top) top = first.site[j].y, end_site = true;
+  }
+  return end_site;
+}
+
+// A quadruped's four feet: as given, or else from the first of up to 16 sampled frames in which
+// all four stand (a walk's first frame may have one in the air), or else from the rest pose.
+std::vector<Foot> fourFeet(const Skeleton& skeleton, const Clip& clip,
+                           const std::vector<Foot>& feet) {
+  if (feet.size() == 4) return feet;
+  const int samples = std::min(clip.frame_count, 16);
+  const size_t n = static_cast<size_t>(clip.joint_count);
+  for (int s = 1; s < samples; ++s) {
+    const size_t f = static_cast<size_t>(s) * static_cast<size_t>(clip.frame_count - 1) /
+                     static_cast<size_t>(samples - 1);
+    Clip one = clip;
+    one.frame_count = 1;
+    one.rotations.assign(clip.rotations.begin() + f * n, clip.rotations.begin() + (f + 1) * n);
+    one.translations.assign(clip.translations.begin() + f * n,
+                            clip.translations.begin() + (f + 1) * n);
+    if (!clip.scales.empty())
+      one.scales.assign(clip.scales.begin() + f * n, clip.scales.begin() + (f + 1) * n);
+    if (Result<std::vector<Foot>> found = findFeet(skeleton, one);
+        found.ok() && found.value().size() == 4)
+      return found.value();
+  }
+  if (Result<std::vector<Foot>> rest = findFeet(skeleton, restClip(skeleton, 1, clip.frame_time));
+      rest.ok() && rest.value().size() == 4)
+    return rest.value();
+  return feet;
+}
+
+}  // namespace
+
+BodyEstimate estimateBody(const Skeleton& skeleton, const Clip& clip, const std::vector<Foot>& feet,
+                          const BodyMassModel& model) {
+  BodyEstimate body;
+  body.figure = measureFigure(skeleton, clip, 1);
+  body.extent_m = body.figure.height;
+  double legs = 0.0;
+  for (const Foot& foot : feet) {
+    const int knee = skeleton.parents[foot.joint];
+    legs += glm::length(skeleton.offsets[foot.joint]) +
+            (knee != kNoParent ? glm::length(skeleton.offsets[knee]) : 0.0);
+  }
+  if (!feet.empty()) body.leg_length_m = legs / static_cast<double>(feet.size());
+  std::ostringstream basis;
+  basis.precision(3);
+  if (body.figure.human) {
+    const double by_legs = body.leg_length_m / kLegOfStature;
+    const double by_extent =
+        topIsHeadTop(skeleton, clip) ? body.extent_m : body.extent_m / kTopJointOfStature;
+    body.stature_m = std::max(by_legs, by_extent);
+    const double r = body.stature_m / model.human_stature_m;
+    body.mass_kg = model.human_mass_kg * r * r;
+    basis << "human, stature " << body.stature_m << " m from "
+          << (by_legs >= by_extent ? "its legs (thigh and shank " : "its joints' extent (")
+          << (by_legs >= by_extent ? body.leg_length_m : body.extent_m) << " m), " << body.mass_kg
+          << " kg at " << model.human_mass_kg << " kg for " << model.human_stature_m << " m";
+  } else if (const std::vector<Foot> four = body.figure.family == BodyFamily::kQuadruped
+                                                ? fourFeet(skeleton, clip, feet)
+                                                : std::vector<Foot>{};
+             four.size() == 4) {
+    const std::vector<glm::dvec3> world = worldPositions(skeleton, clip, 0);
+    body.trunk_length_m = trunkLength(skeleton, four, world);
+    const double t = body.trunk_length_m;
+    body.mass_kg = model.quadruped_kg_m3 * t * t * t;
+    basis << "quadruped, " << body.figure.hip_height << " m at the hips, trunk " << t
+          << " m from hip to shoulder, legs " << body.leg_length_m << " m, " << body.mass_kg
+          << " kg at " << model.quadruped_kg_m3 << " kg per cubed metre of trunk";
+  } else {
+    basis << familyName(body.figure.family) << " (" << body.figure.legs
+          << " legs reach the ground), " << body.extent_m << " m tall: no size model, weighed by "
+          << "volume";
+  }
+  body.basis = basis.str();
+  return body;
 }
 
 }  // namespace sinew::motion

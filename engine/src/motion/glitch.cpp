@@ -102,46 +102,150 @@ std::vector<Glitch> findGlitches(const Clip& clip, const GlitchSettings& setting
   return glitches;
 }
 
-void repairGlitches(Clip& clip, std::span<const Glitch> glitches) {
-  for (const Glitch& g : glitches) {
-    const int before = g.first_frame - 1;
-    const int after = g.first_frame + g.frame_count;
-    const glm::dquat q0 = clip.rotation(before, g.joint);
-    const glm::dquat q1 = clip.rotation(after, g.joint);
-    // Two good frames each side: a cubic through them in the rotation vectors relative to the
-    // frame before, which follows a toe-off's snap (a chord misses it by up to 23 degrees over
-    // three Bandai frames). One each side: the slerp between them.
-    const bool cubic = before >= 1 && after + 1 < clip.frame_count;
-    const double times[4] = {-1.0, 0.0, static_cast<double>(g.frame_count + 1),
-                             static_cast<double>(g.frame_count + 2)};
-    glm::dvec3 points[4];
-    if (cubic) {
-      const glm::dquat inverse = glm::inverse(q0);
-      const int frames[4] = {before - 1, before, after, after + 1};
-      for (int i = 0; i < 4; ++i)
-        points[i] = shortRotationVector(inverse * clip.rotation(frames[i], g.joint));
-    }
-    for (int k = 0; k < g.frame_count; ++k) {
-      glm::dquat& q =
-          clip.rotations[static_cast<size_t>(g.first_frame + k) * clip.joint_count + g.joint];
-      if (!cubic) {
-        q = shortSlerp(q0, q1, static_cast<double>(k + 1) / static_cast<double>(g.frame_count + 1));
-        continue;
-      }
-      const double t = static_cast<double>(k + 1);
-      glm::dvec3 v(0.0);
-      for (int i = 0; i < 4; ++i) {  // Lagrange: the cubic through the four frames
-        double weight = 1.0;
-        for (int m = 0; m < 4; ++m) {
-          if (m != i) weight *= (t - times[m]) / (times[i] - times[m]);
-        }
-        v += weight * points[i];
-      }
-      q = glm::normalize(q0 * fromRotationVector(v));
-    }
-  }
+namespace {
+
+// Whether frames [first, first + count) of `joint` overlap a glitch.
+bool overlapsGlitch(std::span<const Glitch> glitches, int joint, int first, int count) {
+  return std::any_of(glitches.begin(), glitches.end(), [&](const Glitch& g) {
+    return g.joint == joint && first < g.first_frame + g.frame_count &&
+           g.first_frame < first + count;
+  });
 }
 
+// A cyclic motion repeats a stride away: the lag (either way, 0.25-2.5 s) at which the good
+// frames around the glitch (0.2 s each side, at least 3) best match themselves, and the RMS
+// angle of that match, radians; lag 0 when none fits in the clip. Only lags whose frames hold no
+// glitch of the joint count.
+std::pair<int, double> strideLag(const Clip& clip, std::span<const Glitch> glitches,
+                                 const Glitch& g, int context) {
+  const int a = g.first_frame, b = g.first_frame + g.frame_count;
+  const int lo = std::max(1, static_cast<int>(std::lround(0.25 / clip.frame_time)));
+  const int hi = static_cast<int>(std::lround(2.5 / clip.frame_time));
+  int best = 0;
+  double best_cost = 1e300;
+  for (int lag = -hi; lag <= hi; ++lag) {
+    if (std::abs(lag) < lo) continue;
+    const int first = a - context + lag, last = b + context + lag;  // donor frames [first, last)
+    if (first < 0 || last > clip.frame_count) continue;
+    if (overlapsGlitch(glitches, g.joint, first, last - first)) continue;
+    double sum = 0.0;
+    int n = 0;
+    for (int f = a - context; f < b + context; ++f) {
+      if (f >= a && f < b) continue;
+      const double d = angleBetween(clip.rotation(f, g.joint), clip.rotation(f + lag, g.joint));
+      sum += d * d;
+      ++n;
+    }
+    const double cost = std::sqrt(sum / n);
+    if (cost < best_cost) best_cost = cost, best = lag;
+  }
+  return {best, best_cost};
+}
+
+// Frames [a, a + count) of `joint` as the frames `lag` away, carried by the offset that takes
+// the donor's boundary frames onto these (interpolated between the two sides).
+std::vector<glm::dquat> strideFill(const Clip& clip, int joint, int a, int count, int lag) {
+  const int b = a + count;
+  const glm::dquat e0 =
+      clip.rotation(a - 1, joint) * glm::inverse(clip.rotation(a - 1 + lag, joint));
+  const glm::dquat e1 = clip.rotation(b, joint) * glm::inverse(clip.rotation(b + lag, joint));
+  std::vector<glm::dquat> fill(static_cast<size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    const double t = static_cast<double>(k + 1) / static_cast<double>(count + 1);
+    fill[static_cast<size_t>(k)] =
+        glm::normalize(shortSlerp(e0, e1, t) * clip.rotation(a + k + lag, joint));
+  }
+  return fill;
+}
+
+// Frames [a, a + count) by the cubic through two good frames each side (in rotation vectors
+// relative to the frame before), or the slerp between the one each side near the clip's ends.
+std::vector<glm::dquat> cubicFill(const Clip& clip, int joint, int a, int count) {
+  const int before = a - 1, after = a + count;
+  const glm::dquat q0 = clip.rotation(before, joint);
+  const glm::dquat q1 = clip.rotation(after, joint);
+  std::vector<glm::dquat> fill(static_cast<size_t>(count));
+  const bool cubic = before >= 1 && after + 1 < clip.frame_count;
+  const double times[4] = {-1.0, 0.0, static_cast<double>(count + 1),
+                           static_cast<double>(count + 2)};
+  glm::dvec3 points[4];
+  if (cubic) {
+    const glm::dquat inverse = glm::inverse(q0);
+    const int frames[4] = {before - 1, before, after, after + 1};
+    for (int i = 0; i < 4; ++i)
+      points[i] = shortRotationVector(inverse * clip.rotation(frames[i], joint));
+  }
+  for (int k = 0; k < count; ++k) {
+    if (!cubic) {
+      fill[static_cast<size_t>(k)] =
+          shortSlerp(q0, q1, static_cast<double>(k + 1) / static_cast<double>(count + 1));
+      continue;
+    }
+    const double t = static_cast<double>(k + 1);
+    glm::dvec3 v(0.0);
+    for (int i = 0; i < 4; ++i) {  // Lagrange: the cubic through the four frames
+      double weight = 1.0;
+      for (int m = 0; m < 4; ++m)
+        if (m != i) weight *= (t - times[m]) / (times[i] - times[m]);
+      v += weight * points[i];
+    }
+    fill[static_cast<size_t>(k)] = glm::normalize(q0 * fromRotationVector(v));
+  }
+  return fill;
+}
+
+// Squared angles between a fill and the frames it stands for, summed, radians^2.
+double fillError(const Clip& clip, int joint, int a, const std::vector<glm::dquat>& fill) {
+  double sum = 0.0;
+  for (size_t k = 0; k < fill.size(); ++k) {
+    const double d = angleBetween(fill[k], clip.rotation(a + static_cast<int>(k), joint));
+    sum += d * d;
+  }
+  return sum;
+}
+
+// Whether the stride fill beats the cubic on the good frames around the glitch: each of the two
+// methods fills pretend runs of the glitch's length in its good context (and the stride's donor
+// frames), and the one that recovers them better is used. A toe-off's snap, which no
+// interpolation across the missing frames sees, is in the previous stride; a clip shorter than
+// two strides, or motion that does not repeat, keeps the cubic.
+bool strideFillIsBetter(const Clip& clip, std::span<const Glitch> glitches, const Glitch& g,
+                        int lag, int context) {
+  const int count = g.frame_count;
+  double stride = 0.0, cubic = 0.0;
+  int tried = 0;
+  for (int a = g.first_frame - context; a <= g.first_frame + count + context - count; ++a) {
+    if (a < 2 || a + count + 2 > clip.frame_count) continue;
+    if (a + count + 2 > g.first_frame && a - 2 < g.first_frame + count) continue;  // the glitch
+    if (a - 1 + lag < 0 || a + count + 1 + lag > clip.frame_count) continue;
+    if (overlapsGlitch(glitches, g.joint, a - 2, count + 4) ||
+        overlapsGlitch(glitches, g.joint, a - 1 + lag, count + 2))
+      continue;
+    stride += fillError(clip, g.joint, a, strideFill(clip, g.joint, a, count, lag));
+    cubic += fillError(clip, g.joint, a, cubicFill(clip, g.joint, a, count));
+    ++tried;
+  }
+  return tried >= 2 && stride < cubic;
+}
+
+}  // namespace
+
+void repairGlitches(Clip& clip, std::span<const Glitch> glitches) {
+  for (const Glitch& g : glitches) {
+    const int context = std::max(3, static_cast<int>(std::lround(0.2 / clip.frame_time)));
+    const int a = g.first_frame, b = g.first_frame + g.frame_count;
+    int lag = 0;
+    if (a - context >= 0 && b + context <= clip.frame_count)
+      lag = strideLag(clip, glitches, g, context).first;
+    const std::vector<glm::dquat> fill =
+        lag != 0 && strideFillIsBetter(clip, glitches, g, lag, context)
+            ? strideFill(clip, g.joint, a, g.frame_count, lag)
+            : cubicFill(clip, g.joint, a, g.frame_count);
+    for (int k = 0; k < g.frame_count; ++k)
+      clip.rotations[static_cast<size_t>(a + k) * clip.joint_count + g.joint] =
+          fill[static_cast<size_t>(k)];
+  }
+}
 std::string describeGlitch(const Skeleton& skeleton, const Glitch& glitch) {
   const std::string& name = skeleton.names[static_cast<size_t>(glitch.joint)];
   char text[96];

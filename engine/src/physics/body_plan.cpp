@@ -526,20 +526,21 @@ Shape restSoleBox(const motion::Skeleton& skeleton, const BodyPlan& plan, int li
   return shape;
 }
 
-// Masses (de Leva fractions for a human-sized biped, shape volume otherwise, no link below a share
-// of the body), the user's overrides after the rules, and inertia from the shapes.
-Status assignMasses(BodyPlan& plan, const motion::MassDistribution& masses,
-                    const std::vector<motion::Foot>& feet, const BodyPlanSettings& settings) {
+// Masses by the figure's family (motion::estimateBody): a human's total from its stature, shared
+// by the de Leva fractions; a quadruped's total from its trunk, shared by shape volume; other
+// creatures by shape volume at settings.density_kg_m3. No link below a share of the body; the
+// user's overrides after the rules; inertia from the shapes.
+Status assignMasses(BodyPlan& plan, const motion::Skeleton& skeleton, const motion::Clip& clip,
+                    const motion::MassDistribution& masses, const std::vector<motion::Foot>& feet,
+                    const BodyPlanSettings& settings) {
   const int link_count = static_cast<int>(plan.links.size());
   const int n = static_cast<int>(masses.fractions.size());
-  bool has_arms = false, has_legs = false;
-  for (motion::Segment s : masses.segments) {
-    has_arms = has_arms || s == motion::Segment::kUpperArm;
-    has_legs = has_legs || s == motion::Segment::kThigh;
-  }
-  int named_feet = 0;
-  for (const motion::Foot& f : feet) named_feet += f.by_name ? 1 : 0;
-  plan.human = has_arms && has_legs && named_feet == 2 && plan.size_m > 1.0 && plan.size_m < 2.5;
+  motion::BodyMassModel model;
+  model.human_mass_kg = settings.human_mass_kg;
+  model.human_stature_m = settings.reference_size_m;
+  const motion::BodyEstimate body = motion::estimateBody(skeleton, clip, feet, model);
+  plan.human = body.figure.human && body.mass_kg > 0.0;
+  plan.notes.push_back("mass: " + body.basis);
   std::vector<double> fraction(link_count, 0.0);
   if (plan.human)
     for (int j = 0; j < n; ++j) fraction[plan.link_of_joint[j]] += masses.fractions[j];
@@ -547,7 +548,7 @@ Status assignMasses(BodyPlan& plan, const motion::MassDistribution& masses,
   for (int li = 0; li < link_count; ++li) {
     Link& link = plan.links[li];
     const double by_volume = shapeVolume(link.shape) * settings.density_kg_m3;
-    link.mass_kg = fraction[li] > 0.0 ? fraction[li] * settings.human_mass_kg : by_volume;
+    link.mass_kg = fraction[li] > 0.0 ? fraction[li] * body.mass_kg : by_volume;
     total += link.mass_kg;
   }
   // Light links (a tail tip, a paw) against a heavy body make the articulated solve and the
@@ -558,8 +559,8 @@ Status assignMasses(BodyPlan& plan, const motion::MassDistribution& masses,
     total += floor_mass - link.mass_kg;
     link.mass_kg = floor_mass;
   }
-  if (plan.human) {
-    const double k = settings.human_mass_kg / total;
+  if (body.mass_kg > 0.0) {
+    const double k = body.mass_kg / total;
     total = 0.0;
     for (Link& link : plan.links) total += (link.mass_kg *= k);
   }
@@ -1013,7 +1014,7 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
         "the clip's mean pose");
   }
   assignShapes(pose, observed_motion, foot_joints, lateral_world, settings, plan);
-  if (Status s = assignMasses(plan, masses, feet, settings); !s.ok()) return s;
+  if (Status s = assignMasses(plan, skeleton, clip, masses, feet, settings); !s.ok()) return s;
 
   // Which links carry the body: their subtree holds a foot.
   for (int li = static_cast<int>(plan.links.size()) - 1; li >= 0; --li) {

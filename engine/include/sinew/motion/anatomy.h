@@ -167,6 +167,39 @@ struct MassDistribution {
 MassDistribution massDistribution(const Skeleton& skeleton, const std::vector<Foot>& feet,
                                   const SegmentMassTable& table = {});
 
+// What a figure's skeleton says of its body: its family, its size in the terms of that family and
+// what it weighs. Sources: stature from the legs by Winter's segment lengths (Biomechanics and
+// Motor Control of Human Movement, 4th ed., fig. 4.1: hip joint 0.530 and ankle 0.039 of the
+// stature, so thigh plus shank is 0.491) or from the joints' extent when that is taller (a
+// short-legged figure; the topmost joint is taken at the chin's level, 0.870); a human's mass
+// from the stature at a constant body-mass index; a quadruped's from the trunk between its limb
+// girdles, cubed (canids: red fox, coyote and grey wolf all weigh about 19 kg per cubed metre of
+// head-body length, and the trunk from hip to shoulder joint is about 0.45 of that length).
+struct BodyMassModel {
+  double human_mass_kg = 70.0;     // a human of human_stature_m, kg, > 0 (body-mass index 22.9)
+  double human_stature_m = 1.75;   // > 0; a human of stature H weighs human_mass_kg (H / this)^2
+  double quadruped_kg_m3 = 208.0;  // a quadruped weighs this times its trunk length cubed, > 0
+                                   // (19 kg/m^3 / 0.45^3)
+};
+
+struct BodyEstimate {
+  FigureMeasure figure;         // family, legs and human, measured along Y (metres)
+  double extent_m = 0.0;        // the joints' extent along Y in the first frame: to the topmost
+                                // joint or End Site (often the head joint, not the head top)
+  double leg_length_m = 0.0;    // mean over the legs of thigh plus shank bone length (each foot
+                                // joint's bone and the one above it), metres
+  double stature_m = 0.0;       // a human's standing height to the top of the head, else 0
+  double trunk_length_m = 0.0;  // a quadruped's: between the mid-points of its two pairs of leg
+                                // tops (hip and shoulder) in the first frame, else 0
+  double mass_kg = 0.0;         // by the model for a human or a quadruped; 0: no model (other
+                                // creatures), the caller weighs them by volume
+  std::string basis;            // one line: the family and what the size and mass come from
+};
+
+// Precondition: skeleton in metres, Y up (as imported); clip validated; `feet` from findFeet.
+BodyEstimate estimateBody(const Skeleton& skeleton, const Clip& clip, const std::vector<Foot>& feet,
+                          const BodyMassModel& model = {});
+
 // Centre of mass per frame, world metres.
 std::vector<glm::dvec3> centreOfMass(const Skeleton& skeleton, const Clip& clip,
                                      const MassDistribution& masses);

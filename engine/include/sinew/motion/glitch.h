@@ -50,10 +50,13 @@ struct Glitch {
 // clip validated.
 std::vector<Glitch> findGlitches(const Clip& clip, const GlitchSettings& settings = {});
 
-// Replaces each glitch's frames by interpolation between its good neighbours: a cubic through two
-// good frames each side (in rotation vectors relative to the frame before), or the slerp (the
-// short way) between the one frame each side near the clip's ends. Only those frames and
-// joints change.
+// Replaces each glitch's frames from its good neighbours: a cubic through two good frames each
+// side (in rotation vectors relative to the frame before), or the slerp (the short way) between
+// the one frame each side near the clip's ends; or, when the motion repeats, the same frames a
+// stride away (the lag, 0.25-2.5 s, at which the 0.2 s of good frames either side best match
+// themselves), carried onto the glitch's boundary frames. The stride is used where it recovers
+// pretend runs of the same length among those good frames better than the cubic does: a toe-off
+// snap no interpolation sees is in the previous stride. Only those frames and joints change.
 void repairGlitches(Clip& clip, std::span<const Glitch> glitches);
 
 // "Toe_L frames 120-122 (3): 180.0 deg" (frames counted from 0, as everywhere in Sinew).

@@ -2,8 +2,10 @@
 // skeleton (and, when given, the motion it should perform). Joints become links; tiny and leaf
 // joints (fingers, toes, hands, zero-length helpers such as CMU's hip joints) merge into their
 // parents; knees and elbows become hinges, joints that do not move become fixed, the rest are
-// ball joints. Shapes are capsules along limbs and boxes for feet; masses follow the de Leva
-// fractions for human-sized rigs and shape volume otherwise. Units: metres, kilograms, seconds.
+// ball joints. Shapes are capsules along limbs and boxes for feet; the total mass follows the
+// figure's family and size (motion::estimateBody: a human by stature, a quadruped by trunk,
+// others by shape volume), shared by the de Leva fractions for humans and by shape volume
+// otherwise. Units: metres, kilograms, seconds.
 //
 // Frames: a link's frame is its skeleton joint's frame (origin at the pivot). At zero joint
 // coordinates a link's frame is `zero_rotation` relative to its parent link's frame; a ball
@@ -105,7 +107,8 @@ struct BodyPlanSettings {
   double fixed_range_rad = 0.0175;  // joints moving less than this (max angle from the first
                                     // frame) over the clip are fixed, radians, >= 0 (1 degree)
   double limit_margin_rad = 0.26;   // added on both sides of the observed range, radians (15 deg)
-  double human_mass_kg = 70.0;      // total mass of a human-sized rig (biped with arms), kg, > 0
+  double human_mass_kg = 70.0;      // a human of reference_size_m stature, kg, > 0; a human of
+                                    // stature H weighs this (H / reference_size_m)^2 (anatomy.h)
   double density_kg_m3 = 1000.0;    // other creatures: mass by shape volume, kg/m^3, > 0
   double min_link_mass_fraction = 0.01;   // no link lighter than this share of the total (tail
                                           // tips and paws by volume would be ~1/600), [0, 0.1)
@@ -139,7 +142,7 @@ struct BodyPlan {
                                 // the origin above the pelvis carries no body), root first
   double total_mass_kg = 0.0;   // sum of link masses
   double size_m = 0.0;          // the rig's largest extent in its first pose, metres
-  bool human = false;           // human-sized biped: masses from the de Leva table
+  bool human = false;           // a human (motion::measureFigure): de Leva masses
   std::vector<std::string> notes;  // what the user should know (joints merged, hinges refused)
 
   int dofCount() const;                 // sum over links of dofCount(type)
