@@ -3,6 +3,7 @@
 // link's mass can be set (or reset to the rule's), a joint welded or freed; the terrain and the
 // pushes every evaluation takes. Every change is a project setting (undo, save).
 #include <algorithm>
+#include <string>
 #include <cstdio>
 
 #include <imgui.h>
@@ -158,8 +159,13 @@ void drawBodyPanel(EditorState& state) {
   } else {
     ImGui::Text("%.1f kg, %zu links, %d degrees of freedom", plan->total_mass_kg,
                 plan->links.size(), plan->dofCount());
-    ImGui::TextDisabled(
-        "%s", plan->human ? "masses: de Leva's human fractions" : "masses: by shape volume");
+    // What the total comes from (the plan's "mass: " note, motion::estimateBody), and how the
+    // links share it.
+    std::string basis = "mass";
+    for (const std::string& note : plan->notes)
+      if (note.rfind("mass: ", 0) == 0) basis = note;
+    basis += plan->human ? "; shared by de Leva's human fractions" : "; shared by shape volume";
+    ImGui::TextWrapped("%s", basis.c_str());
     drawLinks(state, *plan);
   }
   drawTerrainAndPushes(state);
