@@ -100,7 +100,24 @@ bool startEvolution(EditorState& state, int generations) {
   evolution.slow_polls = 0;
   evolution.snapshot = evolution.session->snapshot();
   evolution.session->start();
-  char budget[48];
+  const std::string budget = budgetText(settings);
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "evolve %s: %d coordinates, %s, population %d, %s, %.0f s window on %s, %s on %d "
+                "of %d threads",
+                setup.value().what.c_str(), evolution.session->problem().layout.size(),
+                settings.optimizer == search::OptimizerKind::kGa ? "genetic algorithm" : "CMA-ES",
+                evolution.session->population(), budget.c_str(), project.physics.window_s,
+                app::terrainText(project.physics.terrain).c_str(),
+                project.search.no_prior ? "no prior" : "seeded from the model",
+                settings.threads > 0 ? settings.threads : search::hardwareThreads(),
+                search::hardwareThreads());
+  state.log.info(line);
+  return true;
+}
+
+std::string budgetText(const search::EvolveSettings& settings) {
+  char budget[64];
   if (settings.minutes <= 0.0)
     std::snprintf(budget, sizeof budget, "%d generations", settings.generations);
   else if (settings.generations > 0)
@@ -108,19 +125,7 @@ bool startEvolution(EditorState& state, int generations) {
                   settings.generations);
   else
     std::snprintf(budget, sizeof budget, "%.1f min", settings.minutes);
-  char line[320];
-  std::snprintf(line, sizeof line,
-                "evolve %s: %d coordinates, %s, population %d, %s, %.0f s window on %s, %s on %d "
-                "of %d threads",
-                setup.value().what.c_str(), evolution.session->problem().layout.size(),
-                settings.optimizer == search::OptimizerKind::kGa ? "genetic algorithm" : "CMA-ES",
-                evolution.session->population(), budget, project.physics.window_s,
-                app::terrainText(project.physics.terrain).c_str(),
-                project.search.no_prior ? "no prior" : "seeded from the model",
-                settings.threads > 0 ? settings.threads : search::hardwareThreads(),
-                search::hardwareThreads());
-  state.log.info(line);
-  return true;
+  return budget;
 }
 
 search::SessionState evolutionState(const EditorState& state) {

@@ -88,5 +88,8 @@ bool exportEvolutionLoop(EditorState& state, int strides, bool in_place);
 bool exportEvolutionResults(EditorState& state, const std::filesystem::path& dir);
 // The running search's state (kReady when there is none).
 search::SessionState evolutionState(const EditorState& state);
+// A search's budget as the log and the Evolve panel say it: "40 generations", "1.5 min" or
+// "1.5 min or 40 generations".
+std::string budgetText(const search::EvolveSettings& settings);
 
 }  // namespace sinew::editor

@@ -82,18 +82,11 @@ void plotHistory(const search::Snapshot& snap) {
 // The settings cannot change under a running search: one line says what they are.
 void drawRunningSettings(const EvolutionState& evolution) {
   const search::EvolveSettings& used = evolution.session->settings();
-  char budget[64];
-  if (used.minutes <= 0.0)
-    std::snprintf(budget, sizeof budget, "%d generations", used.generations);
-  else if (used.generations > 0)
-    std::snprintf(budget, sizeof budget, "%.1f min or %d generations", used.minutes,
-                  used.generations);
-  else
-    std::snprintf(budget, sizeof budget, "%.1f min", used.minutes);
+  const std::string budget = budgetText(used);
   ImGui::TextDisabled("%s, population %d, seed %llu, %s, %.0f s window%s",
                       used.optimizer == search::OptimizerKind::kGa ? "GA" : "CMA-ES",
                       evolution.session->population(), static_cast<unsigned long long>(used.seed),
-                      budget, evolution.session->problem().simulation.seconds,
+                      budget.c_str(), evolution.session->problem().simulation.seconds,
                       evolution.started.search.no_prior ? ", no prior" : "");
 }
 
@@ -209,7 +202,6 @@ void drawProgress(EvolutionState& evolution, search::SessionState run_state, boo
               search::sessionStateName(run_state), snap.generation, snap.evaluations, wall,
               wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
   if (running && evolution.session) {
-    // The budget spent (minutes of wall time since the start, as the session counts them).
     // The budget spent: the larger share of its minutes and of its generations.
     const search::EvolveSettings& used = evolution.session->settings();
     const double budget_s = used.minutes * 60.0;
