@@ -153,13 +153,11 @@ class Generation {
     int left = ranks_.size - 1;
     const auto waiting = Clock::now();
     double moving = 0.0;
-    bool told = false;
     while (left > 0) {
-      if (cancel != nullptr && cancel->load() && !told) {
+      if (cancel != nullptr && cancel->load()) {
         const wire::Bytes id = wire::packPoints(id_, {});
         for (int r = 1; r < ranks_.size; ++r)
           if (pending[static_cast<size_t>(r)]) send(id, r, kCancel);
-        told = true;
         break;  // their answers carry this id and are dropped by the next generation
       }
       bool any = false;
@@ -205,13 +203,11 @@ wire::Bytes evaluateShare(const search::Problem& problem, const wire::Points& sh
     done = true;
   });
   while (!done) {
-    if (!cancel && (arrived(0, kCancel) || arrived(0, kStop))) {
-      if (arrived(0, kCancel)) {
-        Result<wire::Points> which = wire::unpackPoints(receive(0, kCancel));
-        if (which.ok() && which.value().id == share.id) cancel = true;
-      } else {
-        cancel = true;  // the stop stays queued for serve()
-      }
+    if (!cancel && arrived(0, kCancel)) {
+      Result<wire::Points> which = wire::unpackPoints(receive(0, kCancel));
+      if (which.ok() && which.value().id == share.id) cancel = true;
+    } else if (!cancel && arrived(0, kStop)) {
+      cancel = true;  // the stop stays queued for serve()
     }
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
