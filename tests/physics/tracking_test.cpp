@@ -378,5 +378,66 @@ TEST(Simulation, BalanceFeedbackAgainstPushes) {
   }
 }
 
+// Legs balance in pairs: the biped's two under its pelvis; the quadruped's forelegs under the
+// chest and its hind legs under the pelvis, each pair with its own hips.
+TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {
+  for (const char* name : {"biped_walk.bvh", "quadruped_trot.bvh"}) {
+    const test_util::Character c = test_util::loadCharacter(name);
+    ASSERT_FALSE(c.plan.links.empty());
+    const MotionState state = targetState(c.plan, c.asset.skeleton, c.target, 0.0);
+    std::unique_ptr<World> world = World::create(c.plan, state.pose).value();
+    auto made = TrackingController::create(*world, c.asset.skeleton, c.target, state.pose);
+    ASSERT_TRUE(made.ok()) << made.message();
+    const TrackingController& controller = *made.value();
+    const std::vector<LegPair>& pairs = controller.legPairs();
+    ASSERT_EQ(pairs.size(), controller.feet().size() / 2) << name;
+    EXPECT_TRUE(controller.balancing());
+    for (const LegPair& pair : pairs) {
+      const int foot[2] = {controller.feet()[static_cast<size_t>(pair.feet[0])],
+                           controller.feet()[static_cast<size_t>(pair.feet[1])]};
+      std::printf("%s: %s and %s meet at %s (hips %s, %s)\n", name,
+                  c.plan.links[static_cast<size_t>(foot[0])].name.c_str(),
+                  c.plan.links[static_cast<size_t>(foot[1])].name.c_str(),
+                  c.plan.links[static_cast<size_t>(pair.base)].name.c_str(),
+                  c.plan.links[static_cast<size_t>(pair.hips[0])].name.c_str(),
+                  c.plan.links[static_cast<size_t>(pair.hips[1])].name.c_str());
+      EXPECT_NE(pair.hips[0], pair.hips[1]);
+      for (int side = 0; side < 2; ++side)
+        EXPECT_EQ(c.plan.links[static_cast<size_t>(pair.hips[side])].parent, pair.base);
+      // A pair is a left and a right leg: its hips lie either side of the base, across the
+      // direction of travel, not one behind the other.
+      const std::vector<glm::dvec3> origins = linkOrigins(c.plan, state.pose);
+      const glm::dvec3 across = origins[static_cast<size_t>(pair.hips[0])] -
+                                origins[static_cast<size_t>(pair.hips[1])];
+      const glm::dvec3 forward = glm::normalize(
+          linkWorldRotations(c.plan, state.pose)[static_cast<size_t>(pair.base)] *
+          pair.forward_local);
+      EXPECT_LT(std::abs(glm::dot(across, forward)), 0.3 * glm::length(across)) << name;
+    }
+  }
+}
+
+// The bundled trot with its leg pairs balanced sideways (coronal gains only) stays up the 10 s it
+// falls within without feedback: the pairs' feedback, not the tracking alone, holds it.
+TEST(Simulation, LegPairFeedbackKeepsTheQuadrupedTrotUp) {
+  const test_util::Character trot = test_util::loadCharacter("quadruped_trot.bvh");
+  ASSERT_FALSE(trot.plan.links.empty());
+  auto run = [&](bool feedback) {
+    SimulationSettings settings;
+    settings.seconds = 10.0;
+    settings.tracking.feedback = feedback;
+    settings.tracking.balance.cd_coronal = 0.5;
+    settings.tracking.balance.cv_coronal = 0.2;
+    return simulate(trot.plan, trot.asset.skeleton, trot.target, settings).value();
+  };
+  const SimulationReport without = run(false), with = run(true);
+  std::printf("the trot: %.2f s up without feedback, %.2f s with (%.2f m, %.2f m/s)\n",
+              without.fell ? without.fall_time_s : 10.0, with.fell ? with.fall_time_s : 10.0,
+              with.distance_m, with.speed_m_s);
+  EXPECT_TRUE(without.fell);
+  EXPECT_FALSE(with.fell) << with.fall_reason;
+  EXPECT_GT(with.distance_m, 3.0);
+}
+
 }  // namespace
 }  // namespace sinew::physics

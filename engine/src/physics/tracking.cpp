@@ -143,6 +143,55 @@ void liftFoot(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg,
 
 }  // namespace
 
+namespace {
+
+// Legs in pairs that balance together: each pair's feet meet at a link (the pelvis; a
+// quadruped's chest for its forelegs) below which each has its own ball-jointed top link, the
+// hip. Feet pair with the partner they share the deepest link with (the forelegs meet at the
+// chest before either meets a hind leg at the pelvis); a foot left over, or a pair whose hips are
+// not both ball joints, balances with no partner (no feedback).
+std::vector<LegPair> findLegPairs(const BodyPlan& plan, const std::vector<int>& feet) {
+  auto depth = [&](int li) {
+    int d = 0;
+    for (; li > 0; li = plan.links[static_cast<size_t>(li)].parent) ++d;
+    return d;
+  };
+  auto common = [&](int a, int b) {
+    while (a > 0 && !isAncestorLink(plan, a, b)) a = plan.links[static_cast<size_t>(a)].parent;
+    return a;
+  };
+  struct Candidate {
+    int depth, a, b, base;
+  };
+  std::vector<Candidate> candidates;
+  for (size_t a = 0; a < feet.size(); ++a)
+    for (size_t b = a + 1; b < feet.size(); ++b) {
+      const int base = common(feet[a], feet[b]);
+      candidates.push_back({depth(base), static_cast<int>(a), static_cast<int>(b), base});
+    }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.depth > y.depth; });
+  std::vector<char> taken(feet.size(), 0);
+  std::vector<LegPair> pairs;
+  for (const Candidate& c : candidates) {
+    if (taken[static_cast<size_t>(c.a)] || taken[static_cast<size_t>(c.b)]) continue;
+    taken[static_cast<size_t>(c.a)] = taken[static_cast<size_t>(c.b)] = 1;
+    LegPair pair{{c.a, c.b}, {0, 0}, c.base, glm::dvec3(0.0, 0.0, 1.0)};
+    bool ball = true;
+    for (int side = 0; side < 2; ++side) {
+      int hip = feet[static_cast<size_t>(pair.feet[side])];
+      while (plan.links[static_cast<size_t>(hip)].parent != c.base)
+        hip = plan.links[static_cast<size_t>(hip)].parent;
+      pair.hips[side] = hip;
+      ball = ball && plan.links[static_cast<size_t>(hip)].type == JointType::kBall;
+    }
+    if (ball && pair.hips[0] != pair.hips[1]) pairs.push_back(pair);
+  }
+  return pairs;
+}
+
+}  // namespace
+
 constexpr double kSwingShare = 0.15;  // of a swing's height: where it starts and ends
 
 std::vector<FootCycle> targetFootCycles(const BodyPlan& plan, const motion::Skeleton& skeleton,
@@ -356,23 +405,9 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
   for (size_t li = 0; li < plan.links.size(); ++li)
     if (plan.links[li].foot) c->feet_.push_back(static_cast<int>(li));
 
-  // Two feet: the legs meet at their lowest common link; each hip is the leg's top link below it.
-  if (c->feet_.size() == 2) {
-    int common = c->feet_[0];
-    while (common > 0 && !isAncestorLink(plan, common, c->feet_[1]))
-      common = plan.links[static_cast<size_t>(common)].parent;
-    c->pelvis_ = common;
-    for (int foot : c->feet_) {
-      int hip = foot;
-      while (plan.links[static_cast<size_t>(hip)].parent != common)
-        hip = plan.links[static_cast<size_t>(hip)].parent;
-      c->hips_.push_back(hip);
-    }
-    c->balance_ = c->hips_[0] != c->hips_[1] &&
-                  plan.links[static_cast<size_t>(c->hips_[0])].type == JointType::kBall &&
-                  plan.links[static_cast<size_t>(c->hips_[1])].type == JointType::kBall;
-  }
-  // Forward: the feet's soles point forward (their boxes' +Z); in the pelvis link's frame.
+  c->pairs_ = findLegPairs(plan, c->feet_);
+  c->balance_ = !c->pairs_.empty();
+  // Forward: the feet's soles point forward (their boxes' +Z); in each pair's base link frame.
   const std::vector<glm::dquat> standing_world = linkWorldRotations(plan, standing);
   glm::dvec3 forward(0.0);
   for (int foot : c->feet_) {
@@ -381,7 +416,9 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
   }
   forward.y = 0.0;
   if (glm::length(forward) < 1e-9) forward = glm::dvec3(0.0, 0.0, 1.0);
-  c->forward_local_ = glm::inverse(standing_world[static_cast<size_t>(c->pelvis_)]) * glm::normalize(forward);
+  for (LegPair& pair : c->pairs_)
+    pair.forward_local =
+        glm::inverse(standing_world[static_cast<size_t>(pair.base)]) * glm::normalize(forward);
   c->target_ = standing;
   c->motion_ = standing;
   c->cycles_ = targetFootCycles(plan, skeleton, target, c->feet_);
@@ -465,92 +502,104 @@ void TrackingController::referenceKinematics() {
 }
 
 void TrackingController::applyFeedback(const World& world) {
+  std::vector<glm::dmat4> transforms(plan_->links.size());
+  world.linkTransforms(transforms);
+  const std::vector<glm::dquat> target_world = linkWorldRotations(*plan_, motion_);
+  for (size_t p = 0; p < pairs_.size(); ++p) {
+    const int stance = balancePair(world, pairs_[p], transforms, target_world);
+    if (p == 0) stance_ = stance;
+  }
+}
+
+int TrackingController::balancePair(const World& world, const LegPair& pair,
+                                    const std::vector<glm::dmat4>& transforms,
+                                    const std::vector<glm::dquat>& target_world) {
   const BodyPlan& plan = *plan_;
   const std::vector<std::uint8_t>& contacts = world.linkContacts();
   const std::vector<double>& forces = world.linkNormalForces();
-  const bool down0 = contacts[static_cast<size_t>(feet_[0])] > 0;
-  const bool down1 = contacts[static_cast<size_t>(feet_[1])] > 0;
-  if (!down0 && !down1) return;
+  const size_t foot0 = static_cast<size_t>(feet_[static_cast<size_t>(pair.feet[0])]);
+  const size_t foot1 = static_cast<size_t>(feet_[static_cast<size_t>(pair.feet[1])]);
+  const bool down0 = contacts[foot0] > 0;
+  const bool down1 = contacts[foot1] > 0;
+  if (!down0 && !down1) return -1;
   // One foot down: it is the stance foot, the other swings. Both down: the one carrying more
   // holds the torso and nothing swings.
-  int stance = down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1);
-  const bool swinging = stance >= 0;
-  if (stance < 0)
-    stance = forces[static_cast<size_t>(feet_[0])] >= forces[static_cast<size_t>(feet_[1])] ? 0 : 1;
-  stance_ = stance;
-  const int swing = 1 - stance;
+  int side_down = down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1);
+  const bool swinging = side_down >= 0;
+  if (side_down < 0) side_down = forces[foot0] >= forces[foot1] ? 0 : 1;
+  const size_t stance = static_cast<size_t>(pair.feet[static_cast<size_t>(side_down)]);
 
-  std::vector<glm::dmat4> transforms(plan.links.size());
-  world.linkTransforms(transforms);
   auto rotationOf = [&](int li) {
     return glm::normalize(glm::quat_cast(glm::dmat3(transforms[static_cast<size_t>(li)])));
   };
-  const glm::dquat pelvis_now = rotationOf(pelvis_);
-  // The desired pelvis: the target's attitude at the present heading.
-  const std::vector<glm::dquat> target_world = linkWorldRotations(plan, motion_);
-  const glm::dquat pelvis_target = target_world[static_cast<size_t>(pelvis_)];
-  const glm::dquat pelvis_wanted = glm::normalize(
-      yaw(headingOf(pelvis_now, forward_local_)) *
-      glm::inverse(yaw(headingOf(pelvis_target, forward_local_))) * pelvis_target);
+  const glm::dquat base_now = rotationOf(pair.base);
+  // The desired base (pelvis, or a quadruped's chest): the target's attitude at the present
+  // heading.
+  const glm::dquat base_target = target_world[static_cast<size_t>(pair.base)];
+  const double heading_now = headingOf(base_now, pair.forward_local);
+  const double heading_target = headingOf(base_target, pair.forward_local);
+  const glm::dquat base_wanted =
+      glm::normalize(yaw(heading_now) * glm::inverse(yaw(heading_target)) * base_target);
 
   // The centre of mass's offset from the stance foot and its velocity, and the target motion's
   // own at this moment, in each one's heading frame: x to the side (left), z forward.
   const BalanceGains& gains = settings_.balance;
-  const double heading_now = headingOf(pelvis_now, forward_local_);
-  const double heading_target = headingOf(pelvis_target, forward_local_);
   const glm::dvec3 com = world.centreOfMass();
   const glm::dvec3 velocity = world.linearMomentum() / world.totalMass();
-  const glm::dvec3 ankle(transforms[static_cast<size_t>(feet_[static_cast<size_t>(stance)])][3]);
+  const glm::dvec3 ankle(transforms[static_cast<size_t>(feet_[stance])][3]);
   const glm::dvec3 d = glm::inverse(yaw(heading_now)) * (com - ankle);
   const glm::dvec3 v = glm::inverse(yaw(heading_now)) * velocity;
   const glm::dvec3 d_ref =
-      glm::inverse(yaw(heading_target)) * (reference_com_ - reference_ankles_[static_cast<size_t>(stance)]);
+      glm::inverse(yaw(heading_target)) * (reference_com_ - reference_ankles_[stance]);
   const glm::dvec3 v_ref = glm::inverse(yaw(heading_target)) * reference_velocity_;
-  const double sagittal =
-      gains.cd_sagittal * (d.z - d_ref.z) + gains.cv_sagittal * (v.z - v_ref.z);
-  const double coronal = gains.cd_coronal * (d.x - d_ref.x) + gains.cv_coronal * (v.x - v_ref.x);
   const glm::dvec3 forward = yaw(heading_now) * glm::dvec3(0.0, 0.0, 1.0);
   const glm::dvec3 side = glm::cross(kUp, forward);  // the character's left
 
-  // Stance hip: hold the pelvis.
-  const size_t stance_hip = static_cast<size_t>(hips_[static_cast<size_t>(stance)]);
-  const Link& stance_link = plan.links[stance_hip];
+  // Stance hip: hold the base.
+  const size_t stance_hip = static_cast<size_t>(pair.hips[static_cast<size_t>(side_down)]);
   const glm::dquat held =
-      coordinateFor(stance_link, pelvis_wanted, rotationOf(static_cast<int>(stance_hip)));
-  glm::dquat blended = glm::slerp(target_.rotations[stance_hip], held, gains.torso);
-  target_.rotations[stance_hip] = glm::normalize(blended);
+      coordinateFor(plan.links[stance_hip], base_wanted, rotationOf(static_cast<int>(stance_hip)));
+  target_.rotations[stance_hip] =
+      glm::normalize(glm::slerp(target_.rotations[stance_hip], held, gains.torso));
 
-  // Stance ankle (the ankle strategy of Lee, Kim and Lee 2010): the planted foot's target turned
-  // against the centre of mass's velocity error, so the foot tilts the body back towards the
-  // target's velocity. The ground holds the foot, so the servo turns the shank the other way: a
-  // foot turned by +a about `side` tips the body back, one turned by -a about `forward` tips it
-  // to the right; positive gains oppose the error in both planes.
-  if (gains.ankle_sagittal != 0.0 || gains.ankle_coronal != 0.0) {
-    const size_t foot = static_cast<size_t>(feet_[static_cast<size_t>(stance)]);
-    const Link& foot_link = plan.links[foot];
-    if (foot_link.type == JointType::kBall) {
-      const std::vector<glm::dquat> wanted = linkWorldRotations(plan, target_);
-      const glm::dquat turn =
-          glm::normalize(glm::angleAxis(gains.ankle_sagittal * (v.z - v_ref.z), side) *
-                         glm::angleAxis(-gains.ankle_coronal * (v.x - v_ref.x), forward));
-      target_.rotations[foot] = coordinateFor(
-          foot_link, wanted[static_cast<size_t>(foot_link.parent)], glm::normalize(turn * wanted[foot]));
-    }
-  }
-
-  if (!swinging) return;
-  // Swing hip: its target relative to the desired pelvis, turned so the foot lands where it
+  turnStanceAnkle(feet_[stance], v - v_ref, forward, side);
+  if (!swinging) return static_cast<int>(stance);
+  // Swing hip: its target relative to the desired base, turned so the foot lands where it
   // catches the centre of mass: by how far the offset and velocity differ from the target's (the
   // target already swings the leg for its nominal gait).
   // Turning the leg about -side by a positive angle moves the foot forward; about +forward, to
   // the left.
+  const double sagittal =
+      gains.cd_sagittal * (d.z - d_ref.z) + gains.cv_sagittal * (v.z - v_ref.z);
+  const double coronal = gains.cd_coronal * (d.x - d_ref.x) + gains.cv_coronal * (v.x - v_ref.x);
   const glm::dquat correction = glm::normalize(glm::angleAxis(sagittal, -side) *
                                                glm::angleAxis(coronal, forward));
-  const size_t swing_hip = static_cast<size_t>(hips_[static_cast<size_t>(swing)]);
+  const size_t swing_hip = static_cast<size_t>(pair.hips[static_cast<size_t>(1 - side_down)]);
   const Link& swing_link = plan.links[swing_hip];
-  const glm::dquat thigh_wanted = correction * pelvis_wanted *
+  const glm::dquat thigh_wanted = correction * base_wanted *
                                   linkRelativeRotation(swing_link, target_.rotations[swing_hip], 0.0);
-  target_.rotations[swing_hip] = coordinateFor(swing_link, pelvis_now, thigh_wanted);
+  target_.rotations[swing_hip] = coordinateFor(swing_link, base_now, thigh_wanted);
+  return static_cast<int>(stance);
+}
+
+// The ankle strategy of Lee, Kim and Lee 2010: the planted foot's target turned against the
+// centre of mass's velocity error (heading frame: x left, z forward), so the foot tilts the body
+// back towards the target's velocity. The ground holds the foot, so the servo turns the shank
+// the other way: a foot turned by +a about `side` tips the body back, one turned by -a about
+// `forward` tips it to the right; positive gains oppose the error in both planes.
+void TrackingController::turnStanceAnkle(int foot_link, const glm::dvec3& velocity_error,
+                                         const glm::dvec3& forward, const glm::dvec3& side) {
+  const BalanceGains& gains = settings_.balance;
+  if (gains.ankle_sagittal == 0.0 && gains.ankle_coronal == 0.0) return;
+  const size_t foot = static_cast<size_t>(foot_link);
+  const Link& link = plan_->links[foot];
+  if (link.type != JointType::kBall) return;
+  const std::vector<glm::dquat> wanted = linkWorldRotations(*plan_, target_);
+  const glm::dquat turn =
+      glm::normalize(glm::angleAxis(gains.ankle_sagittal * velocity_error.z, side) *
+                     glm::angleAxis(-gains.ankle_coronal * velocity_error.x, forward));
+  target_.rotations[foot] = coordinateFor(link, wanted[static_cast<size_t>(link.parent)],
+                                          glm::normalize(turn * wanted[foot]));
 }
 
 }  // namespace sinew::physics

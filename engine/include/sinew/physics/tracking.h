@@ -6,8 +6,10 @@
 // bounded per joint). Nothing acts on the base: the character moves by its joint torques, gravity
 // and the ground only.
 //
-// Balance feedback (Yin, Loken and van de Panne 2007), for characters with two feet whose legs
-// meet at a common link (the pelvis): with one foot down (the stance foot), the swing hip's target
+// Balance feedback (Yin, Loken and van de Panne 2007), per pair of legs that meet at a common
+// link (a biped's pelvis; a quadruped's forelegs at the chest and hind legs at the pelvis, like
+// the leg frames of Coros, Karpathy, Jones, Reveret and van de Panne 2011): with one foot of the
+// pair down (the stance foot), the swing hip's target
 // is turned, in the world, by
 //   delta = c_d * d + c_v * v
 // per horizontal direction (sagittal: the character's forward; coronal: its side), d the centre
@@ -29,6 +31,7 @@
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "sinew/core/status.h"
@@ -124,6 +127,14 @@ struct FootCycle {
   double touchdown_s = -1.0;
 };
 
+// Two legs that balance together (the biped's; a quadruped's forelegs, and its hind legs).
+struct LegPair {
+  int feet[2] = {0, 0};  // indices into the controller's feet
+  int hips[2] = {0, 0};  // links: each leg's top link below `base`
+  int base = 0;          // the link the two legs meet at: the pelvis, a quadruped's chest
+  glm::dvec3 forward_local{0.0, 0.0, 1.0};  // the character's forward in the base link's frame
+};
+
 class TrackingController {
  public:
   // Enables the world's servos and prepares the targets. `standing`: the pose the ramp starts
@@ -138,8 +149,10 @@ class TrackingController {
 
   const LinkPose& target() const { return target_; }        // the last targets given the servos
   const LinkPose& motionTarget() const { return motion_; }  // the same before balance feedback
-  int stanceFoot() const { return stance_; }  // index into the plan's feet (link order), -1: none
-  bool balancing() const { return balance_; }  // two feet under a common link: feedback applies
+  // The first leg pair's stance foot: index into the plan's feet (link order), -1: none.
+  int stanceFoot() const { return stance_; }
+  bool balancing() const { return balance_; }  // a leg pair under a common link: feedback applies
+  const std::vector<LegPair>& legPairs() const { return pairs_; }
   const std::vector<int>& feet() const { return feet_; }  // foot links
   // (feet) when the target lifts and lands each foot within its period
   const std::vector<FootCycle>& footCycles() const { return cycles_; }
@@ -148,6 +161,11 @@ class TrackingController {
   TrackingController() = default;
   void liftSwingFeet(double time);
   void applyFeedback(const World& world);
+  // One pair's feedback; returns its stance foot (index into feet_), -1 with neither foot down.
+  int balancePair(const World& world, const LegPair& pair, const std::vector<glm::dmat4>& transforms,
+                  const std::vector<glm::dquat>& target_world);
+  void turnStanceAnkle(int foot_link, const glm::dvec3& velocity_error, const glm::dvec3& forward,
+                       const glm::dvec3& side);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
 
   const BodyPlan* plan_ = nullptr;
@@ -160,9 +178,7 @@ class TrackingController {
   std::vector<glm::dquat> rotations_;     // (joints) scratch
   std::vector<glm::dvec3> translations_;  // (joints) the target's translations at the present time
   std::vector<int> feet_;                 // foot links
-  std::vector<int> hips_;                 // (feet) the leg's top link below the common link
-  int pelvis_ = 0;                        // the link the legs meet at
-  glm::dvec3 forward_local_{0.0, 0.0, 1.0};  // the character's forward in the pelvis link frame
+  std::vector<LegPair> pairs_;            // the legs that balance, in pairs
   bool balance_ = false;
   int stance_ = -1;
   glm::dvec3 reference_com_{0.0};           // the target pose's centre of mass, world m
