@@ -128,6 +128,20 @@ std::string budgetText(const search::EvolveSettings& settings) {
   return budget;
 }
 
+int chosenIndividual(const EvolutionState& evolution) {
+  if (!evolution.snapshot) return -1;
+  const search::Snapshot& snap = *evolution.snapshot;
+  const size_t runs = std::min(snap.population_motions.size(), snap.population_terms.size());
+  if (runs == 0) return -1;
+  if (evolution.selected >= 0 && static_cast<size_t>(evolution.selected) < runs)
+    return evolution.selected;
+  size_t best = 0;  // the first of the lowest, as the viewport's stable sort ranks them
+  for (size_t i = 1; i < runs; ++i) {
+    if (snap.population_terms[i].total < snap.population_terms[best].total) best = i;
+  }
+  return static_cast<int>(best);
+}
+
 search::SessionState evolutionState(const EditorState& state) {
   return state.evolution.session ? state.evolution.session->snapshot()->state
                                  : search::SessionState::kReady;

@@ -34,6 +34,7 @@ struct EvolutionState {
   std::shared_ptr<const search::Snapshot> snapshot;  // the latest published
   int reported_generation = 0;                       // the last generation written to the log
   bool show_population = true;                       // draw the population's runs beside the clip
+  bool show_ghost = true;  // the search's target drawn over the chosen run (ghost.h)
   int threads = 0;         // evaluation threads of the next search, 0: every core (the window
                            // sets editorSearchThreads(); headless runs keep every core)
   int selected = -1;       // the individual clicked in the viewport (index in the snapshot's
@@ -86,6 +87,10 @@ bool exportEvolutionBest(EditorState& state);
 bool exportEvolutionLoop(EditorState& state, int strides, bool in_place);
 // Writes what `sinew evolve PROJECT --out DIR` writes (checkpoint.json, history.csv, best.*).
 bool exportEvolutionResults(EditorState& state, const std::filesystem::path& dir);
+// The individual the viewport's ghost and the panels show: the one clicked (`selected`, when
+// it is in the snapshot), else the generation's best (lowest total cost); -1 when no generation
+// has recorded its runs.
+int chosenIndividual(const EvolutionState& evolution);
 // The running search's state (kReady when there is none).
 search::SessionState evolutionState(const EditorState& state);
 // A search's budget as the log and the Evolve panel say it: "40 generations", "1.5 min" or

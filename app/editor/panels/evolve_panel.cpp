@@ -10,6 +10,7 @@
 
 #include <imgui.h>
 
+#include "editor/ghost.h"
 #include "editor/panels/panels.h"
 
 namespace sinew::editor {
@@ -193,9 +194,33 @@ void drawRunButtons(EditorState& state, search::SessionState run_state, bool run
   ImGui::Checkbox("show population", &evolution.show_population);
 }
 
+// The chosen run's ghost at the replayed frame: its deviation from the target, the worst joint,
+// and every joint's in the tooltip (the viewport's colours in degrees).
+void drawGhost(const EditorState& state) {
+  const std::optional<Ghost> ghost = currentGhost(state);
+  if (!ghost || !state.asset) return;
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  const GhostSummary summary = summarise(*ghost);
+  if (summary.worst_joint < 0 ||
+      ghost->deviation_rad.size() != static_cast<size_t>(skeleton.jointCount()))
+    return;
+  ImGui::Text("ghost at %.2f s: off the target by %.1f deg mean, %.1f deg at most (%s)",
+              ghost->time_s, summary.mean_deg, summary.max_deg,
+              skeleton.names[static_cast<size_t>(summary.worst_joint)].c_str());
+  if (!ImGui::IsItemHovered()) return;
+  ImGui::BeginTooltip();
+  ImGui::Text("grey on the target, red at %.0f deg or more off", kGhostRedDeg);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    ImGui::Text("%-20s %6.1f deg", skeleton.names[static_cast<size_t>(j)].c_str(),
+                glm::degrees(ghost->deviation_rad[static_cast<size_t>(j)]));
+  }
+  ImGui::EndTooltip();
+}
+
 // The generation, the budget spent, and the terms of the individual clicked in the viewport
-// (or the best so far), then the history plot.
-void drawProgress(EvolutionState& evolution, search::SessionState run_state, bool running) {
+// (or the best so far), its ghost's deviation, then the history plot.
+void drawProgress(EditorState& state, search::SessionState run_state, bool running) {
+  EvolutionState& evolution = state.evolution;
   const search::Snapshot& snap = *evolution.snapshot;
   const double wall = snap.history.empty() ? 0.0 : snap.history.back().wall_s;
   ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)",
@@ -249,6 +274,7 @@ void drawProgress(EvolutionState& evolution, search::SessionState run_state, boo
     }
     ImGui::EndTable();
   }
+  drawGhost(state);
   plotHistory(snap);
 }
 
@@ -273,7 +299,7 @@ void drawEvolvePanel(EditorState& state) {
   drawFitnessWeights(state);
   drawRunButtons(state, run_state, running);
   if (evolution.snapshot) {
-    drawProgress(evolution, run_state, running);
+    drawProgress(state, run_state, running);
   } else {
     ImGui::TextWrapped(
         "Evolves the clip's Fourier controller (seeded from the model above) until "

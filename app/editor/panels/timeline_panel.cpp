@@ -1,12 +1,13 @@
 // Timeline: play/pause, frame stepping, scrubbing in frames (seconds shown), speed, loop, and what
-// the viewport shows (original, reconstructed model (the target), the search's simulated runs,
-// beside or overlaid, camera follow, shadows, a glTF character's skinned mesh and its skeleton over
-// it).
+// the viewport shows (original, reconstructed model (the target), the search's simulated runs and
+// the target's ghost over the chosen one, beside or overlaid, camera follow, shadows, a glTF
+// character's skinned mesh and its skeleton over it).
 #include <algorithm>
 #include <cmath>
 
 #include <imgui.h>
 
+#include "editor/ghost.h"
 #include "editor/panels/panels.h"
 
 namespace sinew::editor {
@@ -100,6 +101,16 @@ void drawTimelinePanel(EditorState& state) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(has_runs ? "The search's last generation, replayed beside the clip"
                                : "No search has finished a generation yet");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!has_runs || !state.evolution.show_population);
+  ImGui::Checkbox("Ghost", &state.evolution.show_ghost);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(
+        "The search's target drawn over the chosen run (the best, or the one\n"
+        "clicked), each bone grey where the run follows it, to red at %.0f deg\n"
+        "or more off; the Evolve panel gives the degrees per joint",
+        kGhostRedDeg);
   ImGui::SameLine();
   ImGui::TextDisabled("|");
   ImGui::SameLine();
