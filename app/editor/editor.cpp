@@ -549,14 +549,15 @@ bool drawPanels(EditorSession& s, const Layout& layout, WindowEvents& events, bo
   return drawQuitPrompt(state, s.files_panel, ask_to_quit);
 }
 
-// A click on an individual of the population shows its fitness in the Evolve panel.
+// A click on an individual of the population selects it in every panel (the ground: the best).
 void pickClicked(EditorSession& s, const Scene& scene, const Rect& v) {
   if (!s.drag.click || scene.individuals.empty()) return;
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const float x = (mouse.x - v.pos.x) / v.size.x * 2.0f - 1.0f;
   const float y = 1.0f - (mouse.y - v.pos.y) / v.size.y * 2.0f;
-  s.state.evolution.selected =
-      pickIndividual(scene, s.camera.eye(), s.camera.rayDirection(x, y, v.size.x / v.size.y));
+  selectIndividual(
+      s.state.evolution,
+      pickIndividual(scene, s.camera.eye(), s.camera.rayDirection(x, y, v.size.x / v.size.y)));
 }
 
 // The framebuffer's size in pixels and its scale from window coordinates (HiDPI).

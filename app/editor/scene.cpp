@@ -285,11 +285,7 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
   std::vector<CapsuleInstance> population;
   const EvolutionState& evolution = state.evolution;
   const search::Snapshot& snap = *evolution.snapshot;
-  std::vector<size_t> order(snap.population_motions.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return snap.population_terms[a].total < snap.population_terms[b].total;
-  });
+  const std::vector<int> order = rankedIndividuals(snap);
   const glm::vec3 side =
       sideOfTravel(state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0));
   const glm::vec3 forward(-side.z, 0.0f, side.x);
@@ -299,7 +295,9 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
       std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
   std::vector<glm::dmat4> run_world(static_cast<size_t>(figure.joints));
   for (size_t rank = 0; rank < shown; ++rank) {
-    const motion::Clip& run = snap.population_motions[order[rank]];
+    const size_t individual = static_cast<size_t>(order[rank]);
+    if (individual >= snap.population_motions.size()) continue;
+    const motion::Clip& run = snap.population_motions[individual];
     if (run.frame_count < 1 || run.joint_count != figure.joints) continue;
     const int f = replayedFrame(run, state.playback.time_s);
     motion::worldTransforms(figure.asset.skeleton, run, f, run_world);
@@ -311,13 +309,13 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
     offset -= side * (kLaneWidth * figure.height * static_cast<float>(rank % kColumns + 1));
     offset -= forward * (kRowDepth * figure.height * static_cast<float>(rank / kColumns));
     const size_t first = population.size();
-    const bool picked = static_cast<int>(order[rank]) == evolution.selected;
+    const bool picked = order[rank] == evolution.selected;
     appendBones(figure.asset.skeleton, run_world, offset, figure.radius * 0.9f, false, -1,
                 picked      ? &kPickedColor
                 : rank == 0 ? &kBestColor
                             : &kIndividualColor,
                 population);
-    PickBox box{static_cast<int>(order[rank]), glm::vec3(1e30f), glm::vec3(-1e30f)};
+    PickBox box{order[rank], glm::vec3(1e30f), glm::vec3(-1e30f)};
     for (size_t i = first; i < population.size(); ++i) {
       const CapsuleInstance& c = population[i];
       box.lo = glm::min(box.lo, glm::min(c.a, c.b) - c.radius);
@@ -325,7 +323,7 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
     }
     if (population.size() > first) scene.individuals.push_back(box);
     // After the box: a click picks the run, not the target drawn over it.
-    if (ghost && ghost->individual == static_cast<int>(order[rank]))
+    if (ghost && ghost->individual == order[rank])
       appendGhost(figure, *ghost, run_world, offset, population);
   }
   return population;

@@ -582,6 +582,52 @@ TEST_F(EditorModelTest, TheGhostMeasuresEachJointOfTheChosenRunAgainstTheTargetA
   EXPECT_FALSE(editor::ghostAt(target, run, 0, run.frame_count));
 }
 
+TEST_F(EditorModelTest, OneSelectionIsWhatTheViewportTheGhostTheTimelineAndExportShow) {
+  editor::EvolutionSettings& settings = state.evolution.settings;
+  settings.physics.window_s = 1.5;
+  settings.search.population = 6;
+  ASSERT_TRUE(editor::startEvolution(state, 1));
+  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    editor::pollEvolution(state);
+  }
+  editor::pollEvolution(state);
+  ASSERT_TRUE(state.evolution.snapshot && state.evolution.snapshot->generation >= 1);
+  const search::Snapshot& snap = *state.evolution.snapshot;
+  const std::vector<int> order = editor::rankedIndividuals(snap);
+  ASSERT_EQ(order.size(), 6u);
+  // Nothing clicked: every panel shows the generation's best.
+  EXPECT_EQ(editor::chosenIndividual(state.evolution), order.front());
+  EXPECT_EQ(editor::chosenRunLabel(state.evolution), "#1 of 6 (best)");
+  EXPECT_EQ(editor::currentGhost(state)->individual, order.front());
+  EXPECT_EQ(editor::exportedRun(state.evolution)->what, "the best so far");
+  // The worst clicked (in the viewport or the list): the same one everywhere.
+  const int worst = order.back();
+  editor::selectIndividual(state.evolution, worst);
+  EXPECT_EQ(editor::chosenIndividual(state.evolution), worst);
+  EXPECT_EQ(editor::individualRank(snap, worst), 6);
+  EXPECT_EQ(editor::chosenRunLabel(state.evolution), "#6 of 6 (clicked)");
+  EXPECT_EQ(editor::currentGhost(state)->individual, worst);
+  const editor::Scene scene = editor::buildScene(state);
+  EXPECT_EQ(scene.individuals.back().individual, worst);  // drawn, last lane
+  const std::optional<editor::ExportedRun> run = editor::exportedRun(state.evolution);
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->point, snap.population[static_cast<size_t>(worst)]);
+  test::TempDir dir;
+  state.exporting.folder = (dir / "out").string();
+  state.exporting.simulated = true;
+  ASSERT_TRUE(editor::exportChosen(state)) << state.log.lines().back().text;
+  const std::filesystem::path written = editor::exportedRun(state.evolution)->dir;
+  EXPECT_EQ(written.parent_path(), dir / "out");  // its own folder, not passing for the best
+  const nlohmann::json best = nlohmann::json::parse(test::readText(written / "best.json"));
+  EXPECT_DOUBLE_EQ(best["fitness"]["total"].get<double>(),
+                   snap.population_terms[static_cast<size_t>(worst)].total);
+  // An index the snapshot does not have (bad input) goes back to the best.
+  editor::selectIndividual(state.evolution, 99);
+  EXPECT_EQ(state.evolution.selected, -1);
+  EXPECT_EQ(editor::chosenIndividual(state.evolution), order.front());
+}
+
 TEST_F(EditorModelTest, ThePopulationFieldShowsWhatTheSearchWillUseAndGenerationsBoundIt) {
   // 0 is "the optimiser's default": resolved to the number the search takes (CMA-ES 4 + 3 ln n).
   editor::resolvePopulation(state);

@@ -204,9 +204,9 @@ void drawGhost(const EditorState& state) {
   if (summary.worst_joint < 0 ||
       ghost->deviation_rad.size() != static_cast<size_t>(skeleton.jointCount()))
     return;
-  ImGui::Text("ghost at %.2f s: off the target by %.1f deg mean, %.1f deg at most (%s)",
-              ghost->time_s, summary.mean_deg, summary.max_deg,
-              skeleton.names[static_cast<size_t>(summary.worst_joint)].c_str());
+  ImGui::TextWrapped("ghost at %.2f s: off the target by %.1f deg mean, %.1f deg at most (%s)",
+                     ghost->time_s, summary.mean_deg, summary.max_deg,
+                     skeleton.names[static_cast<size_t>(summary.worst_joint)].c_str());
   if (!ImGui::IsItemHovered()) return;
   ImGui::BeginTooltip();
   ImGui::Text("grey on the target, red at %.0f deg or more off", kGhostRedDeg);
@@ -215,6 +215,44 @@ void drawGhost(const EditorState& state) {
                 glm::degrees(ghost->deviation_rad[static_cast<size_t>(j)]));
   }
   ImGui::EndTooltip();
+}
+
+// The last generation's runs, best first: a click on one selects it (as a click in the
+// viewport does); the chosen one is highlighted.
+void drawPopulationList(EvolutionState& evolution) {
+  const search::Snapshot& snap = *evolution.snapshot;
+  if (snap.population_terms.empty()) return;
+  char title[64];
+  std::snprintf(title, sizeof title, "runs of generation %d###runs", snap.generation);
+  if (!ImGui::TreeNode(title)) return;
+  const int chosen = chosenIndividual(evolution);
+  const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg;
+  if (ImGui::BeginTable("population", 5, flags, ImVec2(0.0f, 110.0f))) {
+    for (const char* column : {"#", "cost", "up s", "m", ""}) ImGui::TableSetupColumn(column);
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableHeadersRow();
+    const std::vector<int> order = rankedIndividuals(snap);
+    for (size_t rank = 0; rank < order.size(); ++rank) {
+      const int i = order[rank];
+      const search::FitnessTerms& t = snap.population_terms[static_cast<size_t>(i)];
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      char label[32];
+      std::snprintf(label, sizeof label, "%zu##run%d", rank + 1, i);
+      if (ImGui::Selectable(label, i == chosen, ImGuiSelectableFlags_SpanAllColumns))
+        selectIndividual(evolution, i);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", t.total);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.1f", t.survived_s);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.1f", t.distance_m);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(t.diverged ? "diverged" : t.fell ? "fell" : "");
+    }
+    ImGui::EndTable();
+  }
+  ImGui::TreePop();
 }
 
 // The generation, the budget spent, and the terms of the individual clicked in the viewport
@@ -252,12 +290,10 @@ void drawProgress(EditorState& state, search::SessionState run_state, bool runni
   const search::FitnessTerms& t =
       show_picked ? snap.population_terms[static_cast<size_t>(picked)] : snap.best_terms;
   if (show_picked) {
-    int rank = 1;
-    for (const search::FitnessTerms& other : snap.population_terms) rank += other.total < t.total;
     ImGui::TextColored(ImVec4(1.0f, 0.95f, 0.8f, 1.0f), "clicked: #%d of %zu in generation %d",
-                       rank, snap.population_terms.size(), snap.generation);
+                       individualRank(snap, picked), snap.population_terms.size(), snap.generation);
     ImGui::SameLine();
-    if (ImGui::SmallButton("show the best")) evolution.selected = -1;
+    if (ImGui::SmallButton("show the best")) selectIndividual(evolution, -1);
   }
   ImGui::Text("%s: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", show_picked ? "it" : "best",
               t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s, t.total);
@@ -275,6 +311,7 @@ void drawProgress(EditorState& state, search::SessionState run_state, bool runni
     ImGui::EndTable();
   }
   drawGhost(state);
+  drawPopulationList(evolution);
   plotHistory(snap);
 }
 

@@ -4,6 +4,7 @@
 // character's skinned mesh and its skeleton over it).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <imgui.h>
 
@@ -75,9 +76,19 @@ void drawTimelinePanel(EditorState& state) {
   ImGui::EndDisabled();
 
   ImGui::SetNextItemWidth(-1.0f);
-  char label[64];
+  char label[160];
   std::snprintf(label, sizeof label, "frame %d / %d  (%.2f s)", frame, last,
                 frame * clip->frame_time);
+  // The simulated run every panel shows (issue 16), and where in its own loop it is replayed.
+  const EvolutionState& evolution = state.evolution;
+  const int chosen = evolution.show_population ? chosenIndividual(evolution) : -1;
+  if (chosen >= 0) {
+    const motion::Clip& run = evolution.snapshot->population_motions[static_cast<size_t>(chosen)];
+    const std::string which = chosenRunLabel(evolution);
+    const size_t used = std::strlen(label);
+    std::snprintf(label + used, sizeof label - used, "   run %s at %.2f s", which.c_str(),
+                  replayedFrame(run, playback.time_s) * run.frame_time);
+  }
   if (ImGui::SliderInt("##scrub", &frame, 0, last, label)) {
     playback.time_s = frame * clip->frame_time;
   }
