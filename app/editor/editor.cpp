@@ -21,6 +21,7 @@
 #include "editor/camera.h"
 #include "editor/editor_state.h"
 #include "editor/frame_stats.h"
+#include "editor/ghost.h"
 #include "editor/panels/panels.h"
 #include "editor/preferences.h"
 #include "editor/project_model.h"
@@ -548,14 +549,15 @@ bool drawPanels(EditorSession& s, const Layout& layout, WindowEvents& events, bo
   return drawQuitPrompt(state, s.files_panel, ask_to_quit);
 }
 
-// A click on an individual of the population shows its fitness in the Evolve panel.
+// A click on an individual of the population selects it in every panel (the ground: the best).
 void pickClicked(EditorSession& s, const Scene& scene, const Rect& v) {
   if (!s.drag.click || scene.individuals.empty()) return;
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const float x = (mouse.x - v.pos.x) / v.size.x * 2.0f - 1.0f;
   const float y = 1.0f - (mouse.y - v.pos.y) / v.size.y * 2.0f;
-  s.state.evolution.selected =
-      pickIndividual(scene, s.camera.eye(), s.camera.rayDirection(x, y, v.size.x / v.size.y));
+  selectIndividual(
+      s.state.evolution,
+      pickIndividual(scene, s.camera.eye(), s.camera.rayDirection(x, y, v.size.x / v.size.y)));
 }
 
 // The framebuffer's size in pixels and its scale from window coordinates (HiDPI).
@@ -649,6 +651,22 @@ void printBench(const RunProgress& run, const EditorSession& s, const Framebuffe
   std::fflush(stdout);
 }
 
+// The ghost's figures as the Evolve panel shows them (tests read them).
+void printGhost(const EditorState& state) {
+  const std::optional<Ghost> ghost = currentGhost(state);
+  if (!ghost) return;
+  const GhostSummary summary = summarise(*ghost);
+  const std::string worst = summary.worst_joint >= 0 && state.asset &&
+                                    summary.worst_joint < state.asset->skeleton.jointCount()
+                                ? state.asset->skeleton.names[summary.worst_joint]
+                                : "-";
+  std::printf(
+      "sinew edit: ghost of individual %d at %.2f s: off the target by %.2f deg mean, "
+      "%.2f deg at most (%s), over %zu joints\n",
+      ghost->individual, ghost->time_s, summary.mean_deg, summary.max_deg, worst.c_str(),
+      ghost->deviation_rad.size());
+}
+
 void writeScreenshot(RunProgress& run, const EditorSession& s, const EditorOptions& options,
                      const Framebuffer& fb) {
   if (Status status = saveFramebufferPng(options.screenshot, fb.width, fb.height); !status.ok()) {
@@ -672,6 +690,7 @@ void writeScreenshot(RunProgress& run, const EditorSession& s, const EditorOptio
         run.longest_after_first_s * 1000.0, run.frames_after_first,
         evolution.longest_poll_wait_s * 1000.0, evolution.slow_polls, kSlowPoll_s * 1000.0);
   }
+  printGhost(s.state);
 }
 
 // One PNG per panel, for the user guide.

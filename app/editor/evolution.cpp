@@ -128,6 +128,67 @@ std::string budgetText(const search::EvolveSettings& settings) {
   return budget;
 }
 
+int chosenIndividual(const EvolutionState& evolution) {
+  if (!evolution.snapshot) return -1;
+  const search::Snapshot& snap = *evolution.snapshot;
+  const size_t runs = std::min(snap.population_motions.size(), snap.population_terms.size());
+  if (runs == 0) return -1;
+  if (evolution.selected >= 0 && static_cast<size_t>(evolution.selected) < runs)
+    return evolution.selected;
+  size_t best = 0;  // the first of the lowest, as the viewport's stable sort ranks them
+  for (size_t i = 1; i < runs; ++i) {
+    if (snap.population_terms[i].total < snap.population_terms[best].total) best = i;
+  }
+  return static_cast<int>(best);
+}
+
+void selectIndividual(EvolutionState& evolution, int individual) {
+  const size_t runs = evolution.snapshot ? evolution.snapshot->population_terms.size() : 0;
+  evolution.selected = individual >= 0 && static_cast<size_t>(individual) < runs ? individual : -1;
+}
+
+std::vector<int> rankedIndividuals(const search::Snapshot& snap) {
+  std::vector<int> order(snap.population_terms.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return snap.population_terms[static_cast<size_t>(a)].total <
+           snap.population_terms[static_cast<size_t>(b)].total;
+  });
+  return order;
+}
+
+int individualRank(const search::Snapshot& snap, int individual) {
+  const std::vector<int> order = rankedIndividuals(snap);
+  const auto at = std::find(order.begin(), order.end(), individual);
+  return at == order.end() ? 0 : static_cast<int>(at - order.begin()) + 1;
+}
+
+std::string chosenRunLabel(const EvolutionState& evolution) {
+  const int chosen = chosenIndividual(evolution);
+  if (chosen < 0) return "";
+  char label[64];
+  std::snprintf(label, sizeof label, "#%d of %zu (%s)", individualRank(*evolution.snapshot, chosen),
+                evolution.snapshot->population_terms.size(),
+                chosen == evolution.selected ? "clicked" : "best");
+  return label;
+}
+
+std::optional<ExportedRun> exportedRun(const EvolutionState& evolution) {
+  if (!evolution.snapshot || evolution.snapshot->best_point.empty()) return std::nullopt;
+  const search::Snapshot& snap = *evolution.snapshot;
+  const int i = evolution.selected;
+  if (i < 0 || static_cast<size_t>(i) >= snap.population.size() ||
+      static_cast<size_t>(i) >= snap.population_terms.size())
+    return ExportedRun{snap.best_point, snap.best_terms, evolution.export_dir, "the best so far"};
+  char folder[64], what[96];
+  std::snprintf(folder, sizeof folder, "generation_%d_individual_%d", snap.generation, i);
+  std::snprintf(what, sizeof what, "individual %d of generation %d (#%d of %zu)", i,
+                snap.generation, individualRank(snap, i), snap.population_terms.size());
+  return ExportedRun{snap.population[static_cast<size_t>(i)],
+                     snap.population_terms[static_cast<size_t>(i)],
+                     std::filesystem::path(evolution.export_dir) / folder, what};
+}
+
 search::SessionState evolutionState(const EditorState& state) {
   return state.evolution.session ? state.evolution.session->snapshot()->state
                                  : search::SessionState::kReady;
@@ -190,25 +251,27 @@ void pollEvolution(EditorState& state) {
 
 bool exportEvolutionBest(EditorState& state) {
   EvolutionState& evolution = state.evolution;
-  if (!evolution.session || !evolution.snapshot || evolution.snapshot->best_point.empty()) {
+  const std::optional<ExportedRun> run = exportedRun(evolution);
+  if (!evolution.session || !run) {
     state.log.error("export: no generation has finished yet");
     return false;
   }
-  const Status saved =
-      search::exportBest(evolution.session->problem(), evolution.snapshot->best_point,
-                         evolution.snapshot->best_terms, *state.asset, evolution.export_dir,
-                         app::resultsMeta(evolution.started, evolution.session->settings()));
+  const Status saved = search::exportBest(
+      evolution.session->problem(), run->point, run->terms, *state.asset, run->dir,
+      app::resultsMeta(evolution.started, evolution.session->settings()));
   if (!saved.ok()) {
     state.log.error("export: " + saved.message());
     return false;
   }
-  state.log.info("export: wrote best.json, best.bvh and best.glb to " + evolution.export_dir);
+  state.log.info("export: wrote " + run->what + " as best.json, best.bvh and best.glb to " +
+                 run->dir.string());
   return true;
 }
 
 bool exportEvolutionLoop(EditorState& state, int strides, bool in_place) {
   EvolutionState& evolution = state.evolution;
-  if (!evolution.session || !evolution.snapshot || evolution.snapshot->best_point.empty()) {
+  const std::optional<ExportedRun> run = exportedRun(evolution);
+  if (!evolution.session || !run) {
     state.log.error("export: no generation has finished yet");
     return false;
   }
@@ -216,20 +279,20 @@ bool exportEvolutionLoop(EditorState& state, int strides, bool in_place) {
   settings.strides = strides;
   settings.in_place = in_place;
   const search::Problem& problem = evolution.session->problem();
-  Result<pipeline::LoopFiles> files = pipeline::writeLoopFiles(
-      problem, pipeline::replayBest(problem, evolution.snapshot->best_point),
-      evolution.started.edits, *state.asset, settings, evolution.export_dir);
+  Result<pipeline::LoopFiles> files =
+      pipeline::writeLoopFiles(problem, pipeline::replayBest(problem, run->point),
+                               evolution.started.edits, *state.asset, settings, run->dir);
   if (!files.ok()) {
     state.log.error("export: " + files.message());
     return false;
   }
   const pipeline::PhysicalLoop& loop = files.value().loop;
-  char line[200];
+  char line[512];
   std::snprintf(line, sizeof line,
-                "export: wrote best_loop.bvh, best_loop.glb and loop.json to %s: %d strides of "
-                "%.3f s, foot slide %.2f -> %.2f cm per contact",
-                evolution.export_dir.c_str(), loop.strides, loop.period_s, loop.slideBeforeMeanCm(),
-                loop.slideAfterMeanCm());
+                "export: wrote %s as best_loop.bvh, best_loop.glb and loop.json to %s: %d "
+                "strides of %.3f s, foot slide %.2f -> %.2f cm per contact",
+                run->what.c_str(), run->dir.string().c_str(), loop.strides, loop.period_s,
+                loop.slideBeforeMeanCm(), loop.slideAfterMeanCm());
   state.log.info(line);
   for (const std::string& style : files.value().style.lines())
     state.log.info("loop style " + style);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,10 +35,13 @@ struct EvolutionState {
   std::shared_ptr<const search::Snapshot> snapshot;  // the latest published
   int reported_generation = 0;                       // the last generation written to the log
   bool show_population = true;                       // draw the population's runs beside the clip
+  bool show_ghost = true;  // the search's target drawn over the chosen run (ghost.h)
   int threads = 0;         // evaluation threads of the next search, 0: every core (the window
                            // sets editorSearchThreads(); headless runs keep every core)
-  int selected = -1;       // the individual clicked in the viewport (index in the snapshot's
-                           // population), -1 for none; cleared when a new generation arrives
+  int selected = -1;       // the individual clicked (in the viewport or the Evolve panel's list;
+                           // index in the snapshot's population), -1 for none: the one selection
+                           // every panel reads through chosenIndividual; cleared when a new
+                           // generation arrives
   std::string export_dir;  // where "Export best" writes; default beside the opened file
   // How long pollEvolution waited for the session's snapshot (its lock), seconds: the last
   // call, the longest since the search started, and the polls that took over kSlowPoll_s.
@@ -78,14 +82,39 @@ void stopEvolution(EditorState& state);  // within one simulation step; keeps th
 void setEvolutionWeights(EditorState& state);
 // Takes the session's latest snapshot and logs each finished generation. Call once per frame.
 void pollEvolution(EditorState& state);
-// Writes best.json, best.bvh and best.glb of the best so far into evolution.export_dir.
+// The run Export writes: the clicked individual of the last generation when one is clicked (into
+// the subfolder "generation_G_individual_I" of evolution.export_dir, so its files, named as
+// `sinew evolve` names them, do not pass for the search's best), else the best so far (into
+// export_dir itself). Empty before the first generation.
+struct ExportedRun {
+  std::vector<double> point;  // the genome
+  search::FitnessTerms terms;
+  std::filesystem::path dir;
+  std::string what;  // "the best so far" or "individual 3 of generation 2 (#4 of 23)"
+};
+std::optional<ExportedRun> exportedRun(const EvolutionState& evolution);
+// Writes best.json, best.bvh and best.glb of exportedRun into its folder.
 bool exportEvolutionBest(EditorState& state);
-// Writes the best so far as a loop (best_loop.bvh, best_loop.glb, loop.json: what `sinew evolve
+// Writes exportedRun as a loop (best_loop.bvh, best_loop.glb, loop.json: what `sinew evolve
 // --loop-strides N [--in-place]` writes) into evolution.export_dir; logs the loop's figures, or
 // why there is none (a run that fell in its first strides).
 bool exportEvolutionLoop(EditorState& state, int strides, bool in_place);
 // Writes what `sinew evolve PROJECT --out DIR` writes (checkpoint.json, history.csv, best.*).
 bool exportEvolutionResults(EditorState& state, const std::filesystem::path& dir);
+// The individual the viewport's ghost and the panels show: the one clicked (`selected`, when
+// it is in the snapshot), else the generation's best (lowest total cost); -1 when no generation
+// has recorded its runs.
+int chosenIndividual(const EvolutionState& evolution);
+// Selects an individual of the snapshot's population (a click in the viewport or the list); -1,
+// or an index the snapshot does not have, goes back to the best.
+void selectIndividual(EvolutionState& evolution, int individual);
+// The individual's rank in its generation (1: the lowest total cost; ties by index, as the
+// viewport orders them), 0 when it is not in the snapshot.
+int individualRank(const search::Snapshot& snap, int individual);
+// The individuals of the snapshot's population, best first (the viewport's lanes, the list).
+std::vector<int> rankedIndividuals(const search::Snapshot& snap);
+// What the panels call the chosen run: "#3 of 23 (clicked)" or "#1 of 23 (best)"; "" for none.
+std::string chosenRunLabel(const EvolutionState& evolution);
 // The running search's state (kReady when there is none).
 search::SessionState evolutionState(const EditorState& state);
 // A search's budget as the log and the Evolve panel say it: "40 generations", "1.5 min" or

@@ -148,6 +148,7 @@ std::string describeChange(const app::Project& before, const app::Project& after
     changes.push_back("end sites " + onOff(vb.show_end_sites));
   if (va.show_population != vb.show_population)
     changes.push_back("population " + onOff(vb.show_population));
+  if (va.show_ghost != vb.show_ghost) changes.push_back("ghost " + onOff(vb.show_ghost));
   if (before.target != after.target) changes.push_back("target " + after.target);
   if (changes.empty()) return "";
   if (changes.size() == 1) return changes[0];

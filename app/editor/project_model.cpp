@@ -65,6 +65,7 @@ app::Project captureProject(const EditorState& state) {
   v.show_grid = state.view.show_grid;
   v.show_end_sites = state.view.show_end_sites;
   v.show_population = state.evolution.show_population;
+  v.show_ghost = state.evolution.show_ghost;
   return project;
 }
 
@@ -114,6 +115,7 @@ bool applyProject(EditorState& state, const app::Project& project) {
   state.view.show_grid = v.show_grid;
   state.view.show_end_sites = v.show_end_sites;
   state.evolution.show_population = v.show_population;
+  state.evolution.show_ghost = v.show_ghost;
   return true;
 }
 

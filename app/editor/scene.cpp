@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "editor/ghost.h"
 #include "editor/skinning.h"
 
 namespace sinew::editor {
@@ -22,6 +23,8 @@ const glm::vec4 kModelSelectedColor{1.00f, 0.80f, 0.30f, 0.55f};
 const glm::vec4 kBestColor{0.55f, 1.00f, 0.45f, 0.85f};        // the population's best run
 const glm::vec4 kIndividualColor{0.72f, 0.64f, 1.00f, 0.55f};  // the others
 const glm::vec4 kPickedColor{1.00f, 0.95f, 0.80f, 0.90f};      // the one clicked
+const glm::vec4 kGhostColor{0.92f, 0.92f, 0.95f, 0.40f};       // the target over a run: on it
+const glm::vec4 kGhostRedColor{1.00f, 0.12f, 0.08f, 0.60f};    // kGhostRedDeg or more off
 const float kXrayOpacity = 0.6f;                               // the skeleton drawn over the mesh
 const size_t kBoundsSamples = 4096;  // skinned vertices per mesh looked at for the bounds
 
@@ -103,31 +106,88 @@ std::vector<bool> massless(const motion::Skeleton& skeleton) {
   return above;
 }
 
-void appendBones(const motion::Skeleton& skeleton, std::span<const glm::dmat4> world,
-                 const glm::vec3& offset, float radius, bool end_sites, int selected,
-                 const glm::vec4* model_color, std::vector<CapsuleInstance>& out) {
+// What every part of the scene draws the character at: its size.
+struct SceneFigure {
+  const motion::MotionAsset& asset;
+  int joints = 0;
+  float height = 0.1f;  // rest extent, metres
+  float radius = 0.0f;  // bone capsule radius, display units
+  int pelvis = 0;
+};
+
+// One drawn bone: its capsule (colour unset), the joint it ends at (its side and selection
+// colour) and the joint whose rotation turns it (the ghost's deviation colour).
+struct Bone {
+  CapsuleInstance capsule;
+  int joint = 0;
+  int turned_by = 0;
+};
+
+std::vector<Bone> bonesOf(const motion::Skeleton& skeleton, std::span<const glm::dmat4> world,
+                          const glm::vec3& offset, float radius, bool end_sites) {
+  std::vector<Bone> bones;
   const std::vector<bool> above_pelvis = massless(skeleton);
   for (int j = 0; j < skeleton.jointCount(); ++j) {
     if (above_pelvis[static_cast<size_t>(j)]) continue;
     const glm::vec3 p = glm::vec3(world[j][3]) + offset;
-    glm::vec4 color = model_color != nullptr ? *model_color : sideColor(skeleton.names[j]);
-    if (j == selected) color = model_color != nullptr ? kModelSelectedColor : kSelectedColor;
     const int parent = skeleton.parents[j];
     if (parent != motion::kNoParent && !above_pelvis[static_cast<size_t>(parent)]) {
       const glm::vec3 q = glm::vec3(world[parent][3]) + offset;
       // No thicker than half its length: a chain of many short bones (10,000 joints) would
       // otherwise stack dozens of full-size capsules on every pixel (the renderer's cost).
       const float length = glm::length(p - q);
-      if (length > 1e-4f) out.push_back({q, std::min(radius, 0.5f * length), p, 0.0f, color});
+      if (length > 1e-4f) bones.push_back({{q, std::min(radius, 0.5f * length), p}, j, parent});
     } else {
-      out.push_back({p, radius * 1.3f, p, 0.0f, color});  // the body's root: a ball
+      bones.push_back({{p, radius * 1.3f, p}, j, j});  // the body's root: a ball
     }
     if (end_sites && skeleton.end_sites[j]) {
       const glm::vec3 e = glm::vec3(world[j] * glm::dvec4(*skeleton.end_sites[j], 1.0)) + offset;
       const float length = glm::length(e - p);
-      if (length > 1e-4f)
-        out.push_back({p, std::min(radius * 0.8f, 0.5f * length), e, 0.0f, color});
+      if (length > 1e-4f) bones.push_back({{p, std::min(radius * 0.8f, 0.5f * length), e}, j, j});
     }
+  }
+  return bones;
+}
+
+void appendBones(const motion::Skeleton& skeleton, std::span<const glm::dmat4> world,
+                 const glm::vec3& offset, float radius, bool end_sites, int selected,
+                 const glm::vec4* model_color, std::vector<CapsuleInstance>& out) {
+  for (Bone& bone : bonesOf(skeleton, world, offset, radius, end_sites)) {
+    const int j = bone.joint;
+    glm::vec4 color = model_color != nullptr ? *model_color : sideColor(skeleton.names[j]);
+    if (j == selected) color = model_color != nullptr ? kModelSelectedColor : kSelectedColor;
+    bone.capsule.color = color;
+    out.push_back(bone.capsule);
+  }
+}
+
+// Neutral grey at no deviation to red at kGhostRedDeg and beyond.
+glm::vec4 ghostColor(double deviation_rad) {
+  const float w =
+      static_cast<float>(std::clamp(glm::degrees(deviation_rad) / kGhostRedDeg, 0.0, 1.0));
+  return glm::mix(kGhostColor, kGhostRedColor, w);
+}
+
+// The ghost over its run: the target's pose, its pelvis over the run's on the ground (so it
+// stays over the run however far either travelled), each bone tinted by the deviation of the
+// joint that turns it.
+void appendGhost(const SceneFigure& figure, const Ghost& ghost,
+                 std::span<const glm::dmat4> run_world, const glm::vec3& offset,
+                 std::vector<CapsuleInstance>& out) {
+  motion::Clip pose;
+  pose.frame_time = 1.0;
+  pose.frame_count = 1;
+  pose.joint_count = figure.joints;
+  pose.rotations = ghost.rotations;
+  pose.translations = ghost.translations;
+  std::vector<glm::dmat4> world(static_cast<size_t>(figure.joints));
+  motion::worldTransforms(figure.asset.skeleton, pose, 0, world);
+  glm::vec3 align = glm::vec3(run_world[figure.pelvis][3]) - glm::vec3(world[figure.pelvis][3]);
+  align.y = 0.0f;
+  for (Bone& bone :
+       bonesOf(figure.asset.skeleton, world, offset + align, figure.radius * 1.15f, false)) {
+    bone.capsule.color = ghostColor(ghost.deviation_rad[static_cast<size_t>(bone.turned_by)]);
+    out.push_back(bone.capsule);
   }
 }
 
@@ -139,15 +199,6 @@ void growBounds(Scene& scene, const std::vector<CapsuleInstance>& capsules) {
     }
   }
 }
-
-// What every part of the scene draws the character at: its size.
-struct SceneFigure {
-  const motion::MotionAsset& asset;
-  int joints = 0;
-  float height = 0.1f;  // rest extent, metres
-  float radius = 0.0f;  // bone capsule radius, display units
-  int pelvis = 0;
-};
 
 // Horizontal unit vector to the side of a travel velocity (+X when it stands still).
 glm::vec3 sideOfTravel(const glm::dvec3& v) {
@@ -229,15 +280,12 @@ void addModel(Scene& scene, const EditorState& state, const SceneFigure& figure)
 // stay beside the clip. Returned apart: they stay out of the bounds, the camera keeps framing
 // the clip. Each drawn individual gets a pick box.
 std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& state,
-                                             const SceneFigure& figure) {
+                                             const SceneFigure& figure,
+                                             const std::optional<Ghost>& ghost) {
   std::vector<CapsuleInstance> population;
   const EvolutionState& evolution = state.evolution;
   const search::Snapshot& snap = *evolution.snapshot;
-  std::vector<size_t> order(snap.population_motions.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return snap.population_terms[a].total < snap.population_terms[b].total;
-  });
+  const std::vector<int> order = rankedIndividuals(snap);
   const glm::vec3 side =
       sideOfTravel(state.analysis ? state.analysis->spectrum.travel_velocity : glm::dvec3(0.0));
   const glm::vec3 forward(-side.z, 0.0f, side.x);
@@ -247,11 +295,11 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
       std::min(order.size(), static_cast<size_t>(std::max(evolution.settings.shown, 1)));
   std::vector<glm::dmat4> run_world(static_cast<size_t>(figure.joints));
   for (size_t rank = 0; rank < shown; ++rank) {
-    const motion::Clip& run = snap.population_motions[order[rank]];
+    const size_t individual = static_cast<size_t>(order[rank]);
+    if (individual >= snap.population_motions.size()) continue;
+    const motion::Clip& run = snap.population_motions[individual];
     if (run.frame_count < 1 || run.joint_count != figure.joints) continue;
-    const double duration = std::max(run.duration(), run.frame_time);
-    const double t = std::fmod(state.playback.time_s, duration);
-    const int f = std::clamp(static_cast<int>(t / run.frame_time), 0, run.frame_count - 1);
+    const int f = replayedFrame(run, state.playback.time_s);
     motion::worldTransforms(figure.asset.skeleton, run, f, run_world);
     // Travel removed (the run stays in its lane beside the clip), height and falls kept.
     glm::vec3 offset = scene.root - glm::vec3(run_world[figure.pelvis][3]);
@@ -261,19 +309,22 @@ std::vector<CapsuleInstance> populationBones(Scene& scene, const EditorState& st
     offset -= side * (kLaneWidth * figure.height * static_cast<float>(rank % kColumns + 1));
     offset -= forward * (kRowDepth * figure.height * static_cast<float>(rank / kColumns));
     const size_t first = population.size();
-    const bool picked = static_cast<int>(order[rank]) == evolution.selected;
+    const bool picked = order[rank] == evolution.selected;
     appendBones(figure.asset.skeleton, run_world, offset, figure.radius * 0.9f, false, -1,
                 picked      ? &kPickedColor
                 : rank == 0 ? &kBestColor
                             : &kIndividualColor,
                 population);
-    PickBox box{static_cast<int>(order[rank]), glm::vec3(1e30f), glm::vec3(-1e30f)};
+    PickBox box{order[rank], glm::vec3(1e30f), glm::vec3(-1e30f)};
     for (size_t i = first; i < population.size(); ++i) {
       const CapsuleInstance& c = population[i];
       box.lo = glm::min(box.lo, glm::min(c.a, c.b) - c.radius);
       box.hi = glm::max(box.hi, glm::max(c.a, c.b) + c.radius);
     }
     if (population.size() > first) scene.individuals.push_back(box);
+    // After the box: a click picks the run, not the target drawn over it.
+    if (ghost && ghost->individual == order[rank])
+      appendGhost(figure, *ghost, run_world, offset, population);
   }
   return population;
 }
@@ -314,7 +365,7 @@ Scene buildScene(const EditorState& state) {
   const EvolutionState& evolution = state.evolution;
   if (evolution.show_population && evolution.snapshot &&
       !evolution.snapshot->population_motions.empty()) {
-    population = populationBones(scene, state, figure);
+    population = populationBones(scene, state, figure, currentGhost(state));
   }
   finishScene(scene, asset, population);
   return scene;

@@ -187,7 +187,7 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     if (!view.is_object()) return Status::error(where + "view: expected an object");
     unknownKeys(view,
                 {"speed", "loop", "show_original", "show_model", "model_beside", "follow",
-                 "show_grid", "show_end_sites", "show_population"},
+                 "show_grid", "show_end_sites", "show_population", "show_ghost"},
                 "view.", name, warnings);
     ViewSettings& v = project.view;
     check(read(view, "speed", v.speed, in));
@@ -199,6 +199,7 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     check(read(view, "show_grid", v.show_grid, in));
     check(read(view, "show_end_sites", v.show_end_sites, in));
     check(read(view, "show_population", v.show_population, in));
+    check(read(view, "show_ghost", v.show_ghost, in));
   }
   return status;
 }
@@ -416,7 +417,8 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
                  {"follow", v.follow},
                  {"show_grid", v.show_grid},
                  {"show_end_sites", v.show_end_sites},
-                 {"show_population", v.show_population}};
+                 {"show_population", v.show_population},
+                 {"show_ghost", v.show_ghost}};
   // Paths are bytes; JSON is UTF-8: a non-UTF-8 byte is written as U+FFFD, never a crash.
   return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

@@ -46,6 +46,7 @@ struct ViewSettings {
   bool show_grid = true;
   bool show_end_sites = true;
   bool show_population = true;
+  bool show_ghost = true;  // the search's target over the chosen simulated run
   bool operator==(const ViewSettings&) const = default;
 };
 

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
+#include <span>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -11,6 +13,7 @@
 #include "editor/camera.h"
 #include "editor/editor_state.h"
 #include "editor/evolution.h"
+#include "editor/ghost.h"
 #include "editor/history.h"
 #include "editor/preferences.h"
 #include "editor/project_model.h"
@@ -87,6 +90,7 @@ TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
   p.view.loop = false;
   p.view.show_grid = false;
   p.view.show_population = false;
+  p.view.show_ghost = false;
   const std::filesystem::path file = dir / "walk.sinew.json";
   ASSERT_TRUE(app::saveProject(p, file).ok());
   // The rig is written relative to the project's folder, so the pair can move together.
@@ -514,6 +518,114 @@ TEST_F(EditorModelTest, AClickOnAnIndividualPicksItAndTheGroundPicksNothing) {
   }
   // Straight up from the camera: nobody.
   EXPECT_EQ(editor::pickIndividual(scene, camera.eye(), glm::vec3(0.0f, 1.0f, 0.0f)), -1);
+}
+
+// A clip of the target itself, sampled at the simulation's clock (frame f at f x frame_time,
+// `shift_s` later): what a run that tracked its target perfectly would have recorded.
+motion::Clip targetAsRun(const spectral::TargetMotion& target, const motion::Clip& like,
+                         double shift_s) {
+  motion::Clip clip = like;
+  for (int f = 0; f < clip.frame_count; ++f) {
+    const size_t at = static_cast<size_t>(f) * static_cast<size_t>(clip.joint_count);
+    target.pose(f * clip.frame_time + shift_s,
+                std::span(clip.rotations).subspan(at, static_cast<size_t>(clip.joint_count)),
+                std::span(clip.translations).subspan(at, static_cast<size_t>(clip.joint_count)));
+  }
+  return clip;
+}
+
+TEST_F(EditorModelTest, TheGhostMeasuresEachJointOfTheChosenRunAgainstTheTargetAtItsTime) {
+  editor::EvolutionSettings& settings = state.evolution.settings;
+  settings.physics.window_s = 2.0;
+  settings.search.population = 6;
+  ASSERT_TRUE(editor::startEvolution(state, 1));
+  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    editor::pollEvolution(state);
+  }
+  editor::pollEvolution(state);
+  ASSERT_TRUE(state.evolution.snapshot && state.evolution.snapshot->generation >= 1);
+  state.playback.time_s = 1.5;  // past the ramp from rest, inside the 2 s run
+  const std::optional<editor::Ghost> ghost = editor::currentGhost(state);
+  ASSERT_TRUE(ghost);
+  EXPECT_EQ(ghost->individual, editor::chosenIndividual(state.evolution));
+  const motion::Clip& run =
+      state.evolution.snapshot->population_motions[static_cast<size_t>(ghost->individual)];
+  EXPECT_NEAR(ghost->time_s, 1.5, run.frame_time);
+  ASSERT_EQ(ghost->deviation_rad.size(), static_cast<size_t>(run.joint_count));
+  for (double d : ghost->deviation_rad)
+    EXPECT_TRUE(std::isfinite(d) && d >= 0.0 && d <= std::numbers::pi);
+  const editor::GhostSummary simulated = editor::summarise(*ghost);
+  EXPECT_GT(simulated.max_deg, 0.5);  // a simulated run never tracks its target exactly
+  EXPECT_GT(simulated.mean_deg, 0.0);
+  // The target against itself at the same clock: exactly zero at every joint; half a second
+  // off, clearly not (so the ghost samples the target at the run's own time).
+  const spectral::TargetMotion& target = state.evolution.session->problem().seed;
+  const std::optional<editor::Ghost> self =
+      editor::ghostAt(target, targetAsRun(target, run, 0.0), 0, ghost->frame);
+  ASSERT_TRUE(self);
+  for (double d : self->deviation_rad) EXPECT_EQ(d, 0.0);
+  const std::optional<editor::Ghost> late =
+      editor::ghostAt(target, targetAsRun(target, run, 0.5), 0, ghost->frame);
+  ASSERT_TRUE(late);
+  EXPECT_GT(editor::summarise(*late).max_deg, 5.0);
+  // Drawn over its run, and gone with the toggle (a project setting, one undo step).
+  const size_t with_ghost = editor::buildScene(state).translucent.size();
+  state.evolution.show_ghost = false;
+  EXPECT_FALSE(editor::currentGhost(state));
+  EXPECT_GT(with_ghost, editor::buildScene(state).translucent.size());
+  EXPECT_FALSE(editor::captureProject(state).view.show_ghost);
+  // Bad input: another rig's run, or a frame past the recording, gives no ghost.
+  motion::Clip other = run;
+  other.joint_count = run.joint_count - 1;
+  EXPECT_FALSE(editor::ghostAt(target, other, 0, 0));
+  EXPECT_FALSE(editor::ghostAt(target, run, 0, run.frame_count));
+}
+
+TEST_F(EditorModelTest, OneSelectionIsWhatTheViewportTheGhostTheTimelineAndExportShow) {
+  editor::EvolutionSettings& settings = state.evolution.settings;
+  settings.physics.window_s = 1.5;
+  settings.search.population = 6;
+  ASSERT_TRUE(editor::startEvolution(state, 1));
+  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    editor::pollEvolution(state);
+  }
+  editor::pollEvolution(state);
+  ASSERT_TRUE(state.evolution.snapshot && state.evolution.snapshot->generation >= 1);
+  const search::Snapshot& snap = *state.evolution.snapshot;
+  const std::vector<int> order = editor::rankedIndividuals(snap);
+  ASSERT_EQ(order.size(), 6u);
+  // Nothing clicked: every panel shows the generation's best.
+  EXPECT_EQ(editor::chosenIndividual(state.evolution), order.front());
+  EXPECT_EQ(editor::chosenRunLabel(state.evolution), "#1 of 6 (best)");
+  EXPECT_EQ(editor::currentGhost(state)->individual, order.front());
+  EXPECT_EQ(editor::exportedRun(state.evolution)->what, "the best so far");
+  // The worst clicked (in the viewport or the list): the same one everywhere.
+  const int worst = order.back();
+  editor::selectIndividual(state.evolution, worst);
+  EXPECT_EQ(editor::chosenIndividual(state.evolution), worst);
+  EXPECT_EQ(editor::individualRank(snap, worst), 6);
+  EXPECT_EQ(editor::chosenRunLabel(state.evolution), "#6 of 6 (clicked)");
+  EXPECT_EQ(editor::currentGhost(state)->individual, worst);
+  const editor::Scene scene = editor::buildScene(state);
+  EXPECT_EQ(scene.individuals.back().individual, worst);  // drawn, last lane
+  const std::optional<editor::ExportedRun> run = editor::exportedRun(state.evolution);
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->point, snap.population[static_cast<size_t>(worst)]);
+  test::TempDir dir;
+  state.exporting.folder = (dir / "out").string();
+  state.exporting.simulated = true;
+  ASSERT_TRUE(editor::exportChosen(state)) << state.log.lines().back().text;
+  const std::filesystem::path written = editor::exportedRun(state.evolution)->dir;
+  EXPECT_EQ(written.parent_path(), dir / "out");  // its own folder, not passing for the best
+  const nlohmann::json best = nlohmann::json::parse(test::readText(written / "best.json"));
+  EXPECT_DOUBLE_EQ(best["fitness"]["total"].get<double>(),
+                   snap.population_terms[static_cast<size_t>(worst)].total);
+  // An index the snapshot does not have (bad input) goes back to the best.
+  editor::selectIndividual(state.evolution, 99);
+  EXPECT_EQ(state.evolution.selected, -1);
+  EXPECT_EQ(editor::chosenIndividual(state.evolution), order.front());
 }
 
 TEST_F(EditorModelTest, ThePopulationFieldShowsWhatTheSearchWillUseAndGenerationsBoundIt) {

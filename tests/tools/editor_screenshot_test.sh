@@ -3,7 +3,8 @@
 # (size 1600x900, many colours, the viewport not blank); `broken` opens a truncated BVH file and
 # checks that the editor still runs, exits 0 and names the file and line in its log; `evolve`
 # starts the search from the editor, waits for two generations and checks the log reports them
-# and the population is drawn (a green best run in the viewport); `fox` opens the shared Fox.glb
+# and the population is drawn (a green best run in the viewport) with the ghost's figures (finite,
+# above zero) in the log; `fox` opens the shared Fox.glb
 # and checks its skinned mesh is drawn (its orange coat fills the viewport, and does not with
 # --no-mesh) and casts a shadow on the floor (dark floor pixels, none with --no-shadows).
 # `bench` prints the editor's frame time with 16 characters while the search runs and saves the
@@ -112,6 +113,17 @@ PY
       echo "FAIL: a frame took $longest ms (bound $SINEW_FRAME_BOUND_MS ms)"; exit 1
     fi
     awk -v l="$longest" 'BEGIN { print (l <= 250 ? "within" : "over") " the 250 ms goal: " l " ms" }'
+    # The physics ghost (on by default): the chosen run's joints against the search's target at
+    # the replayed frame's time, in degrees; a simulated run is never exactly on its target, and
+    # every figure must be a finite number.
+    ghost=$(grep -E 'ghost of individual [0-9]+ at ' "$out" || true)
+    [ -n "$ghost" ] || { echo "FAIL: no ghost figures in the log"; exit 1; }
+    echo "$ghost"
+    echo "$ghost" | awk '{
+      for (i = 1; i <= NF; ++i) { if ($i == "by") mean = $(i + 1); if ($i == "deg" && $(i + 1) == "at") worst = $(i - 1) }
+      if (!(mean ~ /^[0-9]+\.[0-9]+$/ && worst ~ /^[0-9]+\.[0-9]+$/)) { print "FAIL: ghost figures not finite: " mean ", " worst; exit 1 }
+      if (!(mean > 0 && worst >= mean)) { print "FAIL: ghost deviation " mean " mean, " worst " at most"; exit 1 }
+    }' || exit 1
     python3 - "$png" <<'PY'
 import struct, sys, zlib
 data = open(sys.argv[1], "rb").read()

@@ -10,6 +10,7 @@
 
 #include <imgui.h>
 
+#include "editor/ghost.h"
 #include "editor/panels/panels.h"
 
 namespace sinew::editor {
@@ -193,9 +194,71 @@ void drawRunButtons(EditorState& state, search::SessionState run_state, bool run
   ImGui::Checkbox("show population", &evolution.show_population);
 }
 
+// The chosen run's ghost at the replayed frame: its deviation from the target, the worst joint,
+// and every joint's in the tooltip (the viewport's colours in degrees).
+void drawGhost(const EditorState& state) {
+  const std::optional<Ghost> ghost = currentGhost(state);
+  if (!ghost || !state.asset) return;
+  const motion::Skeleton& skeleton = state.asset->skeleton;
+  const GhostSummary summary = summarise(*ghost);
+  if (summary.worst_joint < 0 ||
+      ghost->deviation_rad.size() != static_cast<size_t>(skeleton.jointCount()))
+    return;
+  ImGui::TextWrapped("ghost at %.2f s: off the target by %.1f deg mean, %.1f deg at most (%s)",
+                     ghost->time_s, summary.mean_deg, summary.max_deg,
+                     skeleton.names[static_cast<size_t>(summary.worst_joint)].c_str());
+  if (!ImGui::IsItemHovered()) return;
+  ImGui::BeginTooltip();
+  ImGui::Text("grey on the target, red at %.0f deg or more off", kGhostRedDeg);
+  for (int j = 0; j < skeleton.jointCount(); ++j) {
+    ImGui::Text("%-20s %6.1f deg", skeleton.names[static_cast<size_t>(j)].c_str(),
+                glm::degrees(ghost->deviation_rad[static_cast<size_t>(j)]));
+  }
+  ImGui::EndTooltip();
+}
+
+// The last generation's runs, best first: a click on one selects it (as a click in the
+// viewport does); the chosen one is highlighted.
+void drawPopulationList(EvolutionState& evolution) {
+  const search::Snapshot& snap = *evolution.snapshot;
+  if (snap.population_terms.empty()) return;
+  char title[64];
+  std::snprintf(title, sizeof title, "runs of generation %d###runs", snap.generation);
+  if (!ImGui::TreeNode(title)) return;
+  const int chosen = chosenIndividual(evolution);
+  const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg;
+  if (ImGui::BeginTable("population", 5, flags, ImVec2(0.0f, 110.0f))) {
+    for (const char* column : {"#", "cost", "up s", "m", ""}) ImGui::TableSetupColumn(column);
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableHeadersRow();
+    const std::vector<int> order = rankedIndividuals(snap);
+    for (size_t rank = 0; rank < order.size(); ++rank) {
+      const int i = order[rank];
+      const search::FitnessTerms& t = snap.population_terms[static_cast<size_t>(i)];
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      char label[32];
+      std::snprintf(label, sizeof label, "%zu##run%d", rank + 1, i);
+      if (ImGui::Selectable(label, i == chosen, ImGuiSelectableFlags_SpanAllColumns))
+        selectIndividual(evolution, i);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f", t.total);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.1f", t.survived_s);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.1f", t.distance_m);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(t.diverged ? "diverged" : t.fell ? "fell" : "");
+    }
+    ImGui::EndTable();
+  }
+  ImGui::TreePop();
+}
+
 // The generation, the budget spent, and the terms of the individual clicked in the viewport
-// (or the best so far), then the history plot.
-void drawProgress(EvolutionState& evolution, search::SessionState run_state, bool running) {
+// (or the best so far), its ghost's deviation, then the history plot.
+void drawProgress(EditorState& state, search::SessionState run_state, bool running) {
+  EvolutionState& evolution = state.evolution;
   const search::Snapshot& snap = *evolution.snapshot;
   const double wall = snap.history.empty() ? 0.0 : snap.history.back().wall_s;
   ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)",
@@ -227,12 +290,10 @@ void drawProgress(EvolutionState& evolution, search::SessionState run_state, boo
   const search::FitnessTerms& t =
       show_picked ? snap.population_terms[static_cast<size_t>(picked)] : snap.best_terms;
   if (show_picked) {
-    int rank = 1;
-    for (const search::FitnessTerms& other : snap.population_terms) rank += other.total < t.total;
     ImGui::TextColored(ImVec4(1.0f, 0.95f, 0.8f, 1.0f), "clicked: #%d of %zu in generation %d",
-                       rank, snap.population_terms.size(), snap.generation);
+                       individualRank(snap, picked), snap.population_terms.size(), snap.generation);
     ImGui::SameLine();
-    if (ImGui::SmallButton("show the best")) evolution.selected = -1;
+    if (ImGui::SmallButton("show the best")) selectIndividual(evolution, -1);
   }
   ImGui::Text("%s: %s %.1f s, %.2f m (%.2f m/s), cost %.2f", show_picked ? "it" : "best",
               t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s, t.total);
@@ -249,6 +310,8 @@ void drawProgress(EvolutionState& evolution, search::SessionState run_state, boo
     }
     ImGui::EndTable();
   }
+  drawGhost(state);
+  drawPopulationList(evolution);
   plotHistory(snap);
 }
 
@@ -273,7 +336,7 @@ void drawEvolvePanel(EditorState& state) {
   drawFitnessWeights(state);
   drawRunButtons(state, run_state, running);
   if (evolution.snapshot) {
-    drawProgress(evolution, run_state, running);
+    drawProgress(state, run_state, running);
   } else {
     ImGui::TextWrapped(
         "Evolves the clip's Fourier controller (seeded from the model above) until "

@@ -2,6 +2,8 @@
 // strides, as BVH, glTF and coefficients JSON) or the fittest simulated run of the search (BVH,
 // glTF and its controller file), raw or as a seamless loop with planted feet. Every file written, or why not, goes to the Log.
 #include <algorithm>
+#include <optional>
+#include <string>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -28,8 +30,19 @@ void drawExportPanel(EditorState& state) {
   if (ImGui::RadioButton("the model", !e.simulated)) e.simulated = false;
   ImGui::SameLine();
   ImGui::BeginDisabled(!have_best);
-  if (ImGui::RadioButton("the fittest simulated run", e.simulated)) e.simulated = true;
+  // The one selection (issue 16): a run clicked in the viewport or the Evolve panel is the one
+  // written; none clicked, the fittest so far.
+  const std::optional<ExportedRun> run = exportedRun(state.evolution);
+  const bool clicked = run && state.evolution.selected >= 0;
+  std::string simulated = "the fittest simulated run###simulated";
+  if (clicked) {
+    const std::string which = chosenRunLabel(state.evolution);  // "#3 of 23 (clicked)"
+    simulated = "the clicked run, " + which.substr(0, which.find(" (")) + "###simulated";
+  }
+  if (ImGui::RadioButton(simulated.c_str(), e.simulated)) e.simulated = true;
   ImGui::EndDisabled();
+  if (clicked && ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s, into %s", run->what.c_str(), run->dir.string().c_str());
   if (!have_best && e.simulated) e.simulated = false;
   ImGui::SetNextItemWidth(-60.0f);
   ImGui::InputText("folder", &e.folder);

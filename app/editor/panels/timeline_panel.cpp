@@ -1,12 +1,14 @@
 // Timeline: play/pause, frame stepping, scrubbing in frames (seconds shown), speed, loop, and what
-// the viewport shows (original, reconstructed model (the target), the search's simulated runs,
-// beside or overlaid, camera follow, shadows, a glTF character's skinned mesh and its skeleton over
-// it).
+// the viewport shows (original, reconstructed model (the target), the search's simulated runs and
+// the target's ghost over the chosen one, beside or overlaid, camera follow, shadows, a glTF
+// character's skinned mesh and its skeleton over it).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <imgui.h>
 
+#include "editor/ghost.h"
 #include "editor/panels/panels.h"
 
 namespace sinew::editor {
@@ -74,9 +76,19 @@ void drawTimelinePanel(EditorState& state) {
   ImGui::EndDisabled();
 
   ImGui::SetNextItemWidth(-1.0f);
-  char label[64];
+  char label[160];
   std::snprintf(label, sizeof label, "frame %d / %d  (%.2f s)", frame, last,
                 frame * clip->frame_time);
+  // The simulated run every panel shows (issue 16), and where in its own loop it is replayed.
+  const EvolutionState& evolution = state.evolution;
+  const int chosen = evolution.show_population ? chosenIndividual(evolution) : -1;
+  if (chosen >= 0) {
+    const motion::Clip& run = evolution.snapshot->population_motions[static_cast<size_t>(chosen)];
+    const std::string which = chosenRunLabel(evolution);
+    const size_t used = std::strlen(label);
+    std::snprintf(label + used, sizeof label - used, "   run %s at %.2f s", which.c_str(),
+                  replayedFrame(run, playback.time_s) * run.frame_time);
+  }
   if (ImGui::SliderInt("##scrub", &frame, 0, last, label)) {
     playback.time_s = frame * clip->frame_time;
   }
@@ -100,6 +112,16 @@ void drawTimelinePanel(EditorState& state) {
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip(has_runs ? "The search's last generation, replayed beside the clip"
                                : "No search has finished a generation yet");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!has_runs || !state.evolution.show_population);
+  ImGui::Checkbox("Ghost", &state.evolution.show_ghost);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip(
+        "The search's target drawn over the chosen run (the best, or the one\n"
+        "clicked), each bone grey where the run follows it, to red at %.0f deg\n"
+        "or more off; the Evolve panel gives the degrees per joint",
+        kGhostRedDeg);
   ImGui::SameLine();
   ImGui::TextDisabled("|");
   ImGui::SameLine();
