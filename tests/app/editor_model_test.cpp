@@ -227,6 +227,18 @@ class EditorModelTest : public ::testing::Test {
     ASSERT_TRUE(editor::openProject(state, defaultProject()));
     ASSERT_TRUE(state.analysis);
   }
+  // A search of `generations` on the open clip, population 6, a `window_s` window, polled to its
+  // end (at most a minute) as the editor's frames would.
+  void runSearch(double window_s, int generations) {
+    state.evolution.settings.physics.window_s = window_s;
+    state.evolution.settings.search.population = 6;
+    ASSERT_TRUE(editor::startEvolution(state, generations));
+    for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      editor::pollEvolution(state);
+    }
+    editor::pollEvolution(state);
+  }
   editor::EditorState state;
 };
 
@@ -450,15 +462,8 @@ TEST_F(EditorModelTest, ExportWritesTheModelThatReimportsAndReloads) {
 }
 
 TEST_F(EditorModelTest, ExportWritesTheFittestRunAsALoopInPlace) {
-  editor::EvolutionSettings& settings = state.evolution.settings;
-  settings.physics.window_s = 4.5;  // a first stride to settle and two for the loop
-  settings.search.population = 6;
-  ASSERT_TRUE(editor::startEvolution(state, 2));
-  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    editor::pollEvolution(state);
-  }
-  editor::pollEvolution(state);
+  runSearch(4.5, 2);  // a first stride to settle and two for the loop
+  if (HasFatalFailure()) return;
   ASSERT_TRUE(state.evolution.snapshot && !state.evolution.snapshot->best_point.empty());
   test::TempDir dir;
   state.exporting.folder = (dir / "out").string();
@@ -535,15 +540,8 @@ motion::Clip targetAsRun(const spectral::TargetMotion& target, const motion::Cli
 }
 
 TEST_F(EditorModelTest, TheGhostMeasuresEachJointOfTheChosenRunAgainstTheTargetAtItsTime) {
-  editor::EvolutionSettings& settings = state.evolution.settings;
-  settings.physics.window_s = 2.0;
-  settings.search.population = 6;
-  ASSERT_TRUE(editor::startEvolution(state, 1));
-  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    editor::pollEvolution(state);
-  }
-  editor::pollEvolution(state);
+  runSearch(2.0, 1);
+  if (HasFatalFailure()) return;
   ASSERT_TRUE(state.evolution.snapshot && state.evolution.snapshot->generation >= 1);
   state.playback.time_s = 1.5;  // past the ramp from rest, inside the 2 s run
   const std::optional<editor::Ghost> ghost = editor::currentGhost(state);
@@ -583,15 +581,8 @@ TEST_F(EditorModelTest, TheGhostMeasuresEachJointOfTheChosenRunAgainstTheTargetA
 }
 
 TEST_F(EditorModelTest, OneSelectionIsWhatTheViewportTheGhostTheTimelineAndExportShow) {
-  editor::EvolutionSettings& settings = state.evolution.settings;
-  settings.physics.window_s = 1.5;
-  settings.search.population = 6;
-  ASSERT_TRUE(editor::startEvolution(state, 1));
-  for (int i = 0; i < 1200 && !search::ended(editor::evolutionState(state)); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    editor::pollEvolution(state);
-  }
-  editor::pollEvolution(state);
+  runSearch(1.5, 1);
+  if (HasFatalFailure()) return;
   ASSERT_TRUE(state.evolution.snapshot && state.evolution.snapshot->generation >= 1);
   const search::Snapshot& snap = *state.evolution.snapshot;
   const std::vector<int> order = editor::rankedIndividuals(snap);

@@ -110,7 +110,7 @@ struct TrackingSettings {
   double gravity_m_s2 = 9.81;          // for the limits above, > 0
   double ramp_s = 1.0;                 // the targets blend from the standing pose into the motion
                                        // over this time, seconds, >= 0
-  bool feedback = true;                // balance feedback (only for two-footed characters)
+  bool feedback = true;                // balance feedback (for legs in pairs: legPairs())
   BalanceGains balance;
 
   Status validate() const;  // the message names the offending field
