@@ -186,7 +186,10 @@ Status readJoints(const json& document, const motion::Skeleton& skeleton, const 
     if (!(glm::length(rotation) > 1e-9 && glm::length(rotation) < 1e9)) {
       return Status::error(where + ".base_rotation_wxyz: expected a non-zero quaternion");
     }
-    target.base_rotations.push_back(glm::normalize(rotation));
+    // A unit quaternion is kept bit for bit: normalising it again moves its last bits, and a
+    // replayed controller must be the one that was scored (a marginal gait falls otherwise).
+    const double norm = glm::length(rotation);
+    target.base_rotations.push_back(std::abs(norm - 1.0) < 1e-12 ? rotation : rotation / norm);
     target.base_translations.emplace_back(t[0], t[1], t[2]);
     if (joint.contains("base_scale")) {
       double s3[3];
