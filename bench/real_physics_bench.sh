@@ -3,7 +3,8 @@
 # bundled creatures, `sinew evolve --rig CLIP --minutes M` on every core, then the best controller
 # replayed for 10 s and for 30 s. Prints a Markdown table (docs/physics.md keeps one):
 #   clip, links, DOF, mass, stood up (10 s replay, 30 s replay), distance, speed vs the clip's,
-#   tracking error, evaluations, wall time, why it fell.
+#   tracking error against the clip's model (and against the evolved target), evaluations, wall
+#   time, why it fell.
 # A long experiment, not a test: 13 clips x M minutes (M=5: about 70 minutes on 2 cores).
 #   bench/real_physics_bench.sh [SINEW_BINARY] [MINUTES] [OUT_DIR] [CLIP...]
 set -euo pipefail
@@ -26,7 +27,7 @@ if [ ${#clips[@]} -eq 0 ]; then
           "$root/assets/hopper_hop.bvh" "$root/assets/stepper_step.bvh")
 fi
 mkdir -p "$out"
-echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg | evaluations | wall s | push N s fwd/back/left/right | fell because |"
+echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg: clip (own target) | evaluations | wall s | push N s fwd/back/left/right | fell because |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for clip in "${clips[@]}"; do
   name=$(basename "$clip" .bvh)
@@ -49,6 +50,9 @@ head = open(f"{d}.replay10.log").readline()
 m = re.search(r"(\d+) links, (\d+) degrees of freedom, ([\d.]+) kg", head)
 links, dof, mass = m.groups() if m else ("?", "?", "?")
 evals = re.search(r"\((\d+) evaluations\)", open(f"{d}.evolve.log").read())
+# Tracking against the clip's own model (the search's reference: best.json's fitness, the same run
+# as the replay bit for bit) and, in brackets, against the evolved target the body follows.
+clip_track = json.load(open(f"{d}/best.json"))["fitness"]["track_err_rad_rms"] * 57.29578
 clip_speed = "?"
 try:
     v = json.load(open(f"{d}/analysis.json"))["travel_velocity_m_s"]
@@ -79,7 +83,7 @@ if not r10["fell"]:
     pushes = "/".join(best)
 print(f"| {name} | {links} | {dof} | {mass} | {r10['seconds']:.1f} s | {r30['seconds']:.1f} s | "
       f"{r10['distance_m']:.1f} | {r10['speed_m_s']:.2f} ({clip_speed}) | "
-      f"{r10['track_err_rad_rms'] * 57.29578:.1f} | {evals.group(1) if evals else '?'} | {wall} | {pushes} | "
+      f"{clip_track:.1f} ({r10['track_err_rad_rms'] * 57.29578:.1f}) | {evals.group(1) if evals else '?'} | {wall} | {pushes} | "
       f"{r10.get('fall_reason', '') if r10['fell'] else '-'} |")
 PY
 done
