@@ -639,7 +639,8 @@ void Renderer::drawView(const ViewportRect& rect, const OrbitCamera& camera, con
       camera.projection(float(rect.width) / float(std::max(rect.height, 1))) * camera.view();
   const GLuint capsule = programs_[shadows ? kCapsuleShadowed : kCapsule];
   const GLuint skinned = programs_[shadows ? kSkinnedShadowed : kSkinned];
-  for (GLuint program : {capsule, skinned, programs_[kShadowFloor]}) {
+  // The unshadowed capsule program too: the population's ghosts and the x-ray skeleton use it.
+  for (GLuint program : {capsule, programs_[kCapsule], skinned, programs_[kShadowFloor]}) {
     setLighting(program, camera, light);
   }
   glActiveTexture(GL_TEXTURE0 + kShadowUnit);
@@ -683,17 +684,12 @@ void Renderer::drawView(const ViewportRect& rect, const OrbitCamera& camera, con
   const std::span<const CapsuleInstance> translucent(scene.translucent);
   const size_t model = std::min(scene.translucent_casters, translucent.size());
   drawCapsules(capsule, translucent.first(model), view_proj, true);
-  if (translucent.size() > model) {
-    setLighting(programs_[kCapsule], camera, light);
-    drawCapsules(programs_[kCapsule], translucent.subspan(model), view_proj, true,
-                 kPopulationDetail);
-  }
+  drawCapsules(programs_[kCapsule], translucent.subspan(model), view_proj, true, kPopulationDetail);
   if (!scene.xray.empty()) {
     // The skeleton over the mesh: in front of everything (the scissor keeps the clear in the
     // viewport), translucent so the mesh shows through, and unshadowed (it is inside the mesh,
     // which would leave it all in shadow).
     glClear(GL_DEPTH_BUFFER_BIT);
-    setLighting(programs_[kCapsule], camera, light);
     drawCapsules(programs_[kCapsule], scene.xray, view_proj, true);
   }
   glActiveTexture(GL_TEXTURE0 + kShadowUnit);

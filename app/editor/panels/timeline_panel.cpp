@@ -69,7 +69,6 @@ void drawTransportRow(EditorState& state, const motion::Clip& clip, int frame, i
   }
   ImGui::SameLine();
   ImGui::Text("%.2f / %.2f s", playback.time_s, clip.duration());
-  // How the character is drawn, on this row: the view toggles' row below is full.
   ViewToggles& look = state.view;
   groupBar(checkboxWidth("Shadows"));
   toggle("Shadows", &look.shadows);

@@ -183,12 +183,12 @@ Status readJoints(const json& document, const motion::Skeleton& skeleton, const 
     if (Status s = vector(joint, "base_rotation_wxyz", where, 4, q); !s.ok()) return s;
     if (Status s = vector(joint, "base_translation_m", where, 3, t); !s.ok()) return s;
     const glm::dquat rotation(q[0], q[1], q[2], q[3]);
-    if (!(glm::length(rotation) > 1e-9 && glm::length(rotation) < 1e9)) {
+    const double norm = glm::length(rotation);
+    if (!(norm > 1e-9 && norm < 1e9)) {
       return Status::error(where + ".base_rotation_wxyz: expected a non-zero quaternion");
     }
     // A unit quaternion is kept bit for bit: normalising it again moves its last bits, and a
     // replayed controller must be the one that was scored (a marginal gait falls otherwise).
-    const double norm = glm::length(rotation);
     target.base_rotations.push_back(std::abs(norm - 1.0) < 1e-12 ? rotation : rotation / norm);
     target.base_translations.emplace_back(t[0], t[1], t[2]);
     if (joint.contains("base_scale")) {
