@@ -722,6 +722,13 @@ TEST(GltfCorruptTest, RefusesBadFilesNamingTheFileAndTheField) {
     expectRefused(animationWith(b, none, values).write(dir, "nokeys.gltf"),
                   "sampler 0 input accessor 2 has 0 keys");
   }
+  {  // a clip whose last key is a million seconds on: refused before it asks for gigabytes
+    DocBuilder b;
+    const int times = b.floats({0.0f, 1.0f / 30, 2.0f / 30, 1e6f}, "SCALAR", 1);
+    const int values = b.floats({0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3}, "VEC3", 3);
+    expectRefused(animationWith(b, times, values).write(dir, "long.gltf"),
+                  "fps is too many frames (30000001 of 1 joints");
+  }
   {  // a node hierarchy that loops
     DocBuilder b;
     b.doc["nodes"] = json::array({{{"name", "a"}, {"children", json::array({1})}},
