@@ -143,14 +143,15 @@ void liftFoot(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg,
 
 }  // namespace
 
-namespace {
-
 // Legs in pairs that balance together: each pair's feet meet at a link (the pelvis; a
 // quadruped's chest for its forelegs) below which each has its own ball-jointed top link, the
 // hip. Feet pair with the partner they share the deepest link with (the forelegs meet at the
 // chest before either meets a hind leg at the pelvis); a foot left over, or a pair whose hips are
 // not both ball joints, balances with no partner (no feedback).
-std::vector<LegPair> findLegPairs(const BodyPlan& plan, const std::vector<int>& feet) {
+std::vector<LegPair> findLegPairs(const BodyPlan& plan) {
+  std::vector<int> feet;
+  for (size_t li = 0; li < plan.links.size(); ++li)
+    if (plan.links[li].foot) feet.push_back(static_cast<int>(li));
   auto depth = [&](int li) {
     int d = 0;
     for (; li > 0; li = plan.links[static_cast<size_t>(li)].parent) ++d;
@@ -189,8 +190,6 @@ std::vector<LegPair> findLegPairs(const BodyPlan& plan, const std::vector<int>& 
   }
   return pairs;
 }
-
-}  // namespace
 
 constexpr double kSwingShare = 0.15;  // of a swing's height: where it starts and ends
 
@@ -287,21 +286,21 @@ void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations,
 const char* balanceGainName(int i) {
   static const char* const kNames[kBalanceGainCount] = {
       "cd_sagittal", "cv_sagittal",   "cd_coronal",    "cv_coronal",
-      "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift"};
+      "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift", "heading"};
   return kNames[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
 double& balanceGain(BalanceGains& g, int i) {
   double* const fields[kBalanceGainCount] = {&g.cd_sagittal, &g.cv_sagittal,   &g.cd_coronal,
                                              &g.cv_coronal,  &g.torso,         &g.ankle_sagittal,
-                                             &g.ankle_coronal, &g.swing_lift};
+                                             &g.ankle_coronal, &g.swing_lift,  &g.heading};
   return *fields[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
-bool balanceGainIsShare(int i) { return i == 4 || i == 7; }
+bool balanceGainIsShare(int i) { return i == 4 || i == 7 || i == 8; }
 
 double balanceGainLimit(int i, double signed_limit) {
-  return i == 4 ? 1.0 : (i == 7 ? 0.1 : signed_limit);
+  return i == 4 || i == 8 ? 1.0 : (i == 7 ? 0.1 : signed_limit);
 }
 
 Status TrackingSettings::validate() const {
@@ -405,7 +404,7 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
   for (size_t li = 0; li < plan.links.size(); ++li)
     if (plan.links[li].foot) c->feet_.push_back(static_cast<int>(li));
 
-  c->pairs_ = findLegPairs(plan, c->feet_);
+  c->pairs_ = findLegPairs(plan);
   c->balance_ = !c->pairs_.empty();
   // Forward: the feet's soles point forward (their boxes' +Z); in each pair's base link frame.
   const std::vector<glm::dquat> standing_world = linkWorldRotations(plan, standing);
@@ -532,18 +531,21 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
   auto rotationOf = [&](int li) {
     return glm::normalize(glm::quat_cast(glm::dmat3(transforms[static_cast<size_t>(li)])));
   };
+  const BalanceGains& gains = settings_.balance;
   const glm::dquat base_now = rotationOf(pair.base);
   // The desired base (pelvis, or a quadruped's chest): the target's attitude at the present
-  // heading.
+  // heading turned back towards the target's by the share `heading`.
   const glm::dquat base_target = target_world[static_cast<size_t>(pair.base)];
   const double heading_now = headingOf(base_now, pair.forward_local);
   const double heading_target = headingOf(base_target, pair.forward_local);
+  const double heading_held =
+      heading_now + gains.heading * std::remainder(heading_target - heading_now,
+                                                   2.0 * std::numbers::pi);
   const glm::dquat base_wanted =
-      glm::normalize(yaw(heading_now) * glm::inverse(yaw(heading_target)) * base_target);
+      glm::normalize(yaw(heading_held) * glm::inverse(yaw(heading_target)) * base_target);
 
   // The centre of mass's offset from the stance foot and its velocity, and the target motion's
   // own at this moment, in each one's heading frame: x to the side (left), z forward.
-  const BalanceGains& gains = settings_.balance;
   const glm::dvec3 com = world.centreOfMass();
   const glm::dvec3 velocity = world.linearMomentum() / world.totalMass();
   const glm::dvec3 ankle(transforms[static_cast<size_t>(feet_[stance])][3]);

@@ -17,7 +17,8 @@
 // that moment (the target already swings the leg for its nominal gait), so that the swing foot
 // lands where it catches the body; and the stance hip's target is replaced, by the share `torso`, with the
 // rotation that brings the pelvis to the target's attitude (its tilt, at the pelvis's present
-// heading). Both hips' targets are set relative to the desired pelvis, not the present one.
+// heading turned back towards the target's by the share `heading`). Both hips' targets are set
+// relative to the desired pelvis, not the present one.
 //
 // Swing clearance: while the target swings a foot (from its lift-off to its touchdown), the
 // foot's target is raised by swing_lift x rig size x sin^2(pi u), u the share of the swing
@@ -91,14 +92,19 @@ struct BalanceGains {
   double ankle_sagittal = 0.0;  // stance-foot turn per m/s of centre-of-mass velocity error
   double ankle_coronal = 0.0;   // forward and to the side, rad/(m/s)
   double swing_lift = 0.02;     // mid-swing lift of a swing foot per rig size, [0, 0.1]
+  // Share of the base's heading error (the target's heading less the present one) by which the
+  // stance hips turn the base back, [0, 1]. Off (0) the stance hip holds the present heading, so
+  // nothing steers a turned body back; the search tunes it for characters with two or more leg
+  // pairs only (bipeds were worse with it: docs/physics.md).
+  double heading = 0.0;
 };
 
 // The gains by index, in the order files and the genome hold them.
-inline constexpr int kBalanceGainCount = 8;
-const char* balanceGainName(int i);  // "cd_sagittal", ..., "swing_lift"
+inline constexpr int kBalanceGainCount = 9;
+const char* balanceGainName(int i);  // "cd_sagittal", ..., "swing_lift", "heading"
 double& balanceGain(BalanceGains& gains, int i);
-// The largest value gain i may take, and whether it is a share from 0 (torso, swing_lift) rather
-// than signed.
+// The largest value gain i may take, and whether it is a share from 0 (torso, swing_lift,
+// heading) rather than signed.
 double balanceGainLimit(int i, double signed_limit);
 bool balanceGainIsShare(int i);
 
@@ -134,6 +140,11 @@ struct LegPair {
   int base = 0;          // the link the two legs meet at: the pelvis, a quadruped's chest
   glm::dvec3 forward_local{0.0, 0.0, 1.0};  // the character's forward in the base link's frame
 };
+
+// The plan's legs in pairs that balance together (LegPair::feet index the plan's foot links in
+// link order; forward_local is left at +Z): each pair's feet meet at a link below which each has
+// its own ball-jointed hip. Feet pair with the partner they share the deepest link with.
+std::vector<LegPair> findLegPairs(const BodyPlan& plan);
 
 class TrackingController {
  public:
