@@ -62,9 +62,9 @@ TEST(SearchBadInput, ControllerFilesGiveOneLineNamingTheField) {
             file + ": not valid JSON (a sinew.controller object)");
 }
 
-// The gains added after version 1's first files (ankle_sagittal, ankle_coronal, swing_lift): saved
-// and read back; a file without them was made without them and replays with them off; a lift
-// beyond its range is refused naming the field.
+// The gains added after version 1's first files (ankle_sagittal, ankle_coronal, swing_lift,
+// heading): saved and read back; a file without them was made without them and replays with them
+// off; a lift beyond its range is refused naming the field.
 TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   const physics::test_util::Character c = biped();
   test::TempDir dir;
@@ -73,22 +73,26 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
       [](nlohmann::json& j) {
         j["balance"]["ankle_sagittal"] = 0.25;
         j["balance"]["swing_lift"] = 0.03;
+        j["balance"]["heading"] = 0.7;
       },
       dir);
   ASSERT_TRUE(same.ok()) << same.message();
   EXPECT_EQ(same.value().balance.ankle_sagittal, 0.25);
   EXPECT_EQ(same.value().balance.ankle_coronal, physics::BalanceGains{}.ankle_coronal);
   EXPECT_EQ(same.value().balance.swing_lift, 0.03);
+  EXPECT_EQ(same.value().balance.heading, 0.7);
   Result<ControllerFile> older = editedController(
       c,
       [](nlohmann::json& j) {
-        for (const char* key : {"ankle_sagittal", "ankle_coronal", "swing_lift"}) j["balance"].erase(key);
+        for (const char* key : {"ankle_sagittal", "ankle_coronal", "swing_lift", "heading"})
+          j["balance"].erase(key);
       },
       dir);
   ASSERT_TRUE(older.ok()) << older.message();
   EXPECT_TRUE(older.value().warnings.empty());
   EXPECT_EQ(older.value().balance.ankle_sagittal, 0.0);
   EXPECT_EQ(older.value().balance.swing_lift, 0.0);
+  EXPECT_EQ(older.value().balance.heading, 0.0);
   EXPECT_EQ(older.value().balance.torso, physics::BalanceGains{}.torso);
   Result<ControllerFile> high = editedController(
       c, [](nlohmann::json& j) { j["balance"]["swing_lift"] = 0.5; }, dir);

@@ -3,6 +3,7 @@
 // outcome on the creatures and the default biped.
 #include "sinew/search/session.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -70,6 +71,27 @@ TEST(SearchGenome, ThePriorPointIsTheAnalysedMotion) {
   const std::vector<double> r = blind.layout.startPoint(7);
   EXPECT_NE(r, blind.layout.startPoint(8));
   EXPECT_EQ(r, blind.layout.startPoint(7));
+}
+
+// The heading share is a gene only where two or more leg pairs balance (the trot's forelegs and
+// hind legs), starting at 1; a biped's genome has no such gene and decodes it as off.
+TEST(SearchGenome, OnlyCharactersWithTwoLegPairsSearchTheHeadingShare) {
+  for (const char* name : {"biped_walk.bvh", "quadruped_trot.bvh"}) {
+    const physics::test_util::Character c = physics::test_util::loadCharacter(name);
+    ASSERT_FALSE(c.plan.links.empty());
+    const bool quadruped = physics::findLegPairs(c.plan).size() >= 2;
+    const Problem p = makeProblem(c, 2.0);
+    const std::vector<std::string>& names = p.layout.names();
+    const bool has_gene = std::find(names.begin(), names.end(), "balance.heading") != names.end();
+    EXPECT_EQ(has_gene, quadruped) << name;
+    EXPECT_EQ(p.layout.decodeGains(p.layout.startPoint(1)).heading, quadruped ? 1.0 : 0.0) << name;
+    const std::vector<double> top(static_cast<size_t>(p.layout.size()), 1.0);
+    const std::vector<double> bottom(static_cast<size_t>(p.layout.size()), 0.0);
+    EXPECT_EQ(p.layout.decodeGains(top).heading, quadruped ? 1.0 : 0.0) << name;
+    EXPECT_EQ(p.layout.decodeGains(bottom).heading, 0.0) << name;
+  }
+  EXPECT_EQ(physics::findLegPairs(physics::test_util::loadCharacter("quadruped_trot.bvh").plan).size(),
+            2u);
 }
 
 // Robustness trials: the cost is the mean over the nominal run and one run per trial push (to
