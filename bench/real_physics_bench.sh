@@ -5,8 +5,11 @@
 #   clip, links, DOF, mass, stood up (10 s replay, 30 s replay), distance, speed vs the clip's,
 #   tracking error against the clip's model (and against the evolved target), evaluations, wall
 #   time, why it fell.
-# A long experiment, not a test: 13 clips x M minutes (M=5: about 70 minutes on 2 cores).
-#   bench/real_physics_bench.sh [SINEW_BINARY] [MINUTES] [OUT_DIR] [CLIP...]
+# A long experiment, not a test: 13 clips x M minutes (M=5: about 70 minutes on 2 cores) per seed.
+#   [SEEDS="1 2 ..."] bench/real_physics_bench.sh [SINEW_BINARY] [MINUTES] [OUT_DIR] [CLIP...]
+# SEEDS (default 1): one search, and one row, per seed and clip. One search's outcome varies with
+# its seed about as much as any controller change measured on the dog (docs/physics.md), so judge
+# a change by several.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 sinew=${1:-$root/build/release/app/sinew}
@@ -29,11 +32,17 @@ fi
 mkdir -p "$out"
 echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg: clip (own target) | evaluations | wall s | push N s fwd/back/left/right | fell because |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+read -r -a seeds <<< "${SEEDS:-1}"
 for clip in "${clips[@]}"; do
+for seed in "${seeds[@]}"; do
   name=$(basename "$clip" .bvh)
   dir="$out/$name"
+  if [ ${#seeds[@]} -gt 1 ]; then
+    dir="$out/$name.seed$seed"
+    name="$name (seed $seed)"
+  fi
   start=$(date +%s.%N)
-  "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed 1 --out "$dir" > "$dir.evolve.log" 2>&1 || {
+  "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed "$seed" --out "$dir" > "$dir.evolve.log" 2>&1 || {
     echo "| $name | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$dir.evolve.log") |"
     continue
   }
@@ -86,4 +95,5 @@ print(f"| {name} | {links} | {dof} | {mass} | {r10['seconds']:.1f} s | {r30['sec
       f"{clip_track:.1f} ({r10['track_err_rad_rms'] * 57.29578:.1f}) | {evals.group(1) if evals else '?'} | {wall} | {pushes} | "
       f"{r10.get('fall_reason', '') if r10['fell'] else '-'} |")
 PY
+done
 done
