@@ -378,6 +378,31 @@ TEST(Simulation, BalanceFeedbackAgainstPushes) {
   }
 }
 
+// A fall says which way the body went, in the frame of the heading the target faces (the
+// bundled walk faces +Z, its left is +X): a hard push on the pelvis without feedback fells it
+// the way it was pushed.
+TEST(Simulation, AFallSaysWhichWayTheBodyWent) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const struct {
+    glm::dvec3 push;
+    const char* way;
+  } cases[] = {{{0, 0, 150}, "forwards: "},
+               {{0, 0, -150}, "backwards: "},
+               {{150, 0, 0}, "to the left: "},
+               {{-150, 0, 0}, "to the right: "}};
+  for (const auto& c : cases) {
+    SimulationSettings settings;
+    settings.seconds = 3.0;
+    settings.tracking.feedback = false;
+    settings.pushes.push_back({0.5, c.push, ""});
+    const SimulationReport r =
+        simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value();
+    ASSERT_TRUE(r.fell) << c.way;
+    EXPECT_EQ(r.fall_reason.rfind(c.way, 0), 0u) << r.fall_reason;
+  }
+}
+
 // Legs balance in pairs: the biped's two under its pelvis; the quadruped's forelegs under the
 // chest and its hind legs under the pelvis, each pair with its own hips.
 TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {

@@ -226,32 +226,69 @@ void countFootfalls(const World& world, const std::vector<int>& feet,
   }
 }
 
-// A fall, first of: a link that may not touch the ground on it, the pelvis upside down (`up_y`,
-// its up's world y), the centre of mass below a share of its starting height.
-void checkFall(const BodyPlan& plan, const World& world, const std::vector<std::uint8_t>& contacts,
-               const std::vector<char>& may_touch, double up_y, double start_height,
-               double fall_height_ratio, SimulationReport& report) {
-  for (size_t li = 0; li < plan.links.size(); ++li)
-    if (contacts[li] > 0 && !may_touch[li]) {
-      report.fell = true;
-      report.fall_reason = plan.links[li].name + " touched the ground";
-      break;
-    }
-  if (!report.fell && up_y < 0.0) {
-    report.fell = true;
-    report.fall_reason = "turned over (the pelvis upside down)";
-  }
+// The horizontal direction the target faces: the first leg pair's base's forward in the
+// target's pose, else the base's +Z.
+glm::dvec3 targetForward(const BodyPlan& plan, const TrackingController& controller) {
+  const std::vector<glm::dquat> rotations = linkWorldRotations(plan, controller.motionTarget());
+  const std::vector<LegPair>& pairs = controller.legPairs();
+  const glm::dvec3 f = pairs.empty() ? rotations[0] * glm::dvec3(0.0, 0.0, 1.0)
+                                     : rotations[static_cast<size_t>(pairs[0].base)] *
+                                           pairs[0].forward_local;
+  const glm::dvec3 flat(f.x, 0.0, f.z);
+  return glm::length(flat) > 1e-9 ? glm::normalize(flat) : glm::dvec3(0.0, 0.0, 1.0);
+}
+
+// Which way a body that dropped went: the centre of mass against the middle of its feet, in
+// the frame of the heading the target faces (targetForward): "backwards", "forwards",
+// "to the left" or "to the right" by the larger component, or "folded over its feet" within 15%
+// of the rig's size (the legs gave way under it).
+std::string dropDirection(const BodyPlan& plan, const World& world,
+                          const TrackingController& controller,
+                          const std::vector<glm::dmat4>& transforms) {
+  const std::vector<int>& feet = controller.feet();
+  if (feet.empty()) return "";
+  const glm::dvec3 forward = targetForward(plan, controller);
+  glm::dvec3 middle(0.0);
+  for (int f : feet) middle += glm::dvec3(transforms[static_cast<size_t>(f)][3]);
+  middle /= static_cast<double>(feet.size());
+  glm::dvec3 offset = world.centreOfMass() - middle;
+  offset.y = 0.0;
+  if (glm::length(offset) < 0.15 * plan.size_m) return "folded over its feet";
+  const glm::dvec3 left = glm::cross(glm::dvec3(0.0, 1.0, 0.0), forward);
+  const double ahead = glm::dot(offset, forward), aside = glm::dot(offset, left);
+  if (std::abs(ahead) >= std::abs(aside)) return ahead > 0.0 ? "forwards" : "backwards";
+  return aside > 0.0 ? "to the left" : "to the right";
+}
+
+// What a fall check needs of the present step besides the world.
+struct FallContext {
+  const std::vector<std::uint8_t>& contacts;  // (links) the world's
+  const std::vector<glm::dmat4>& transforms;  // (links) the world's
+  const TrackingController& controller;
+  double up_y;                                // the pelvis's up, its world y
+};
+
+// A fall, first of: a link that may not touch the ground on it, the pelvis upside down, the
+// centre of mass below a share of its starting height; each says which way the body went
+// (dropDirection).
+void checkFall(const BodyPlan& plan, const World& world, const FallContext& now,
+               const std::vector<char>& may_touch, double start_height, double fall_height_ratio,
+               SimulationReport& report) {
+  std::ostringstream reason;
+  reason.precision(3);
+  for (size_t li = 0; li < plan.links.size() && reason.tellp() == 0; ++li)
+    if (now.contacts[li] > 0 && !may_touch[li]) reason << plan.links[li].name << " touched the ground";
+  if (reason.tellp() == 0 && now.up_y < 0.0) reason << "turned over (the pelvis upside down)";
   const glm::dvec3 com = world.centreOfMass();
   const double height = com.y - world.groundHeight(com.x, com.z);
-  if (!report.fell && height < fall_height_ratio * start_height) {
-    std::ostringstream reason;
-    reason.precision(3);
+  if (reason.tellp() == 0 && height < fall_height_ratio * start_height)
     reason << "centre of mass " << height << " m above the ground (started at " << start_height
            << " m)";
-    report.fell = true;
-    report.fall_reason = reason.str();
-  }
-  if (report.fell) report.fall_time_s = world.time();
+  if (reason.tellp() == 0) return;
+  const std::string way = dropDirection(plan, world, now.controller, now.transforms);
+  report.fell = true;
+  report.fall_reason = (way.empty() ? "" : way + ": ") + reason.str();
+  report.fall_time_s = world.time();
 }
 
 }  // namespace
@@ -355,8 +392,8 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     const glm::dvec3 up = glm::dmat3(transforms[0]) * pelvis_up;
     report.min_uprightness = std::min(report.min_uprightness, up.y);
     if (!report.fell)
-      checkFall(plan, world, contacts, may_touch, up.y, start_height, settings.fall_height_ratio,
-                report);
+      checkFall(plan, world, {contacts, transforms, controller, up.y},
+                may_touch, start_height, settings.fall_height_ratio, report);
     if (static_cast<double>(step + 1) + 1e-9 >= next_record) {
       recorder.record(world, report);
       next_record += record_every;

@@ -64,7 +64,8 @@ struct SimulationReport {
                               // from the states before it
   std::string diverged_reason;  // "a joint at 100 rad/s, Bullet's velocity clamp", or empty
   double fall_time_s = -1.0;  // -1: did not fall
-  std::string fall_reason;    // e.g. "LeftHand touched the ground", "centre of mass at 0.41 m"
+  std::string fall_reason;    // e.g. "LeftHand touched the ground", "backwards: centre of mass
+                              // 0.41 m above the ground (started at 0.9 m)"
   double seconds = 0.0;       // simulated (less than asked when it stopped at a fall)
   double distance_m = 0.0;    // horizontal travel of the centre of mass, start to end
   double speed_m_s = 0.0;     // distance / seconds
