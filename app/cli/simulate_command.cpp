@@ -2,6 +2,7 @@
 // rig's own motion unless --clip) on a chosen terrain, with scheduled pushes; reports whether and
 // when it fell, how far it went, how well it tracked and what it cost, and can write what it did
 // as BVH/glTF on the rig's skeleton and the figures as JSON.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -50,6 +51,9 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
     footfalls.push_back({{"foot", r.feet[static_cast<size_t>(f.foot)]},
                          {"time_s", f.time_s},
                          {"position_m", {f.position.x, f.position.y, f.position.z}}});
+  nlohmann::json limited = nlohmann::json::array();
+  for (size_t li = 1; li < r.links.size(); ++li)
+    limited.push_back({{"link", toUtf8(r.links[li])}, {"share", r.torque_limited_share[li]}});
   return {
       {"rig", toUtf8(args.rig)},
       {"clip", toUtf8(args.clip.empty() ? args.rig : args.clip)},
@@ -70,7 +74,8 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
       {"mass_kg", r.mass_kg},
       {"pushed_impulse_ns", {r.pushed_impulse_ns.x, r.pushed_impulse_ns.y, r.pushed_impulse_ns.z}},
       {"feet", feet},
-      {"footfalls", footfalls}};
+      {"footfalls", footfalls},
+      {"torque_limited", limited}};
 }
 
 // The flags as the pipeline's settings; the engine makes the target and the body from them.
@@ -130,6 +135,22 @@ Status applyBalanceFlag(const std::vector<double>& balance, physics::BalanceGain
   return {};
 }
 
+// The joints most often at their torque limit (5% of the steps or more), most first.
+void printTorqueLimited(const physics::SimulationReport& r) {
+  std::vector<size_t> order;
+  for (size_t li = 1; li < r.torque_limited_share.size(); ++li)
+    if (r.torque_limited_share[li] >= 0.05) order.push_back(li);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return r.torque_limited_share[a] > r.torque_limited_share[b];
+  });
+  if (order.empty()) return;
+  std::printf("  at the torque limit:");
+  for (size_t k = 0; k < order.size() && k < 4; ++k)
+    std::printf("%s %s %.0f%%", k > 0 ? "," : "", r.links[order[k]].c_str(),
+                100.0 * r.torque_limited_share[order[k]]);
+  std::printf(" of the steps%s\n", order.size() > 4 ? " (and more)" : "");
+}
+
 void printReport(const physics::SimulationReport& r) {
   if (r.diverged)
     std::printf("diverged at %.2f s: %s; figures up to then\n", r.fall_time_s,
@@ -147,6 +168,7 @@ void printReport(const physics::SimulationReport& r) {
     std::printf("  %-16s on the ground %3.0f%% of the time\n", r.feet[f].c_str(),
                 100.0 * r.contact_share[f]);
   std::printf("  %zu footfalls\n", r.footfalls.size());
+  printTorqueLimited(r);
 }
 
 // --output (the run on the rig's skeleton) and --json (the figures).

@@ -403,6 +403,33 @@ TEST(Simulation, AFallSaysWhichWayTheBodyWent) {
   }
 }
 
+// The report counts the steps a joint's servo spends at its torque limit: none with limits far
+// above what the walk asks, most of them for the legs that carry the body when those are weak.
+TEST(Simulation, TheReportCountsStepsAtTheTorqueLimit) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  auto limited = [&](double support_scale, double limb_scale) {
+    SimulationSettings settings;
+    settings.seconds = 0.5;
+    settings.stop_at_fall = false;
+    settings.tracking.support_torque_scale = support_scale;
+    settings.tracking.limb_torque_scale = limb_scale;
+    return simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value();
+  };
+  const SimulationReport strong = limited(100.0, 100.0);
+  ASSERT_EQ(strong.torque_limited_share.size(), biped.plan.links.size());
+  ASSERT_EQ(strong.links.size(), biped.plan.links.size());
+  for (double share : strong.torque_limited_share) EXPECT_EQ(share, 0.0);
+  const SimulationReport weak = limited(0.01, 100.0);
+  for (size_t li = 1; li < biped.plan.links.size(); ++li) {
+    const double share = weak.torque_limited_share[li];
+    EXPECT_GE(share, 0.0);
+    EXPECT_LE(share, 1.0);
+    if (biped.plan.links[li].supports) EXPECT_GT(share, 0.5) << weak.links[li];
+    else EXPECT_EQ(share, 0.0) << weak.links[li];
+  }
+}
+
 // Legs balance in pairs: the biped's two under its pelvis; the quadruped's forelegs under the
 // chest and its hind legs under the pelvis, each pair with its own hips.
 TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {

@@ -211,6 +211,23 @@ void addEffort(const World& world, std::span<const double> torques,
   }
 }
 
+// Links whose servo torque is at its limit (within 0.1%) on any axis this step, counted into
+// `limited` (links).
+void countTorqueLimited(const BodyPlan& plan, std::span<const double> torques,
+                        const std::vector<double>& limits, const std::vector<int>& offsets,
+                        std::vector<double>& limited) {
+  for (size_t li = 1; li < plan.links.size(); ++li) {
+    const int dofs = plan.links[li].type == JointType::kBall ? 3
+                     : plan.links[li].type == JointType::kHinge ? 1 : 0;
+    bool at_limit = false;
+    for (int d = 0; d < dofs; ++d)
+      at_limit = at_limit || (limits[li] > 0.0 &&
+                              std::abs(torques[static_cast<size_t>(offsets[li] + d)]) >=
+                                  0.999 * limits[li]);
+    if (at_limit) limited[li] += 1.0;
+  }
+}
+
 // Footfalls: a foot that touches the ground after a step off it; the steps each foot is down.
 void countFootfalls(const World& world, const std::vector<int>& feet,
                     const std::vector<std::uint8_t>& contacts,
@@ -314,6 +331,12 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   const std::vector<int>& feet = controller.feet();
   for (int f : feet) report.feet.push_back(plan.links[static_cast<size_t>(f)].name);
   report.contact_share.assign(feet.size(), 0.0);
+  report.torque_limited_share.assign(plan.links.size(), 0.0);
+  for (const Link& link : plan.links) report.links.push_back(link.name);
+  const std::vector<double> torque_limits =
+      jointTorqueLimits(plan, settings.tracking.support_torque_scale,
+                        settings.tracking.limb_torque_scale, settings.tracking.gravity_m_s2);
+  const std::vector<int> dof_offsets = plan.dofOffsets();
   const std::vector<char> may_touch = groundLinks(plan);
 
   const size_t dofs = static_cast<size_t>(world.dofCount());
@@ -384,6 +407,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     world.servoTorques(torques);
     world.jointVelocities(velocities);
     addEffort(world, torques, velocities, report);
+    countTorqueLimited(plan, torques, torque_limits, dof_offsets, report.torque_limited_share);
 
     // Contacts: footfalls, and any other link on the ground is a fall.
     const std::vector<std::uint8_t>& contacts = world.linkContacts();
@@ -409,6 +433,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   report.speed_m_s = report.seconds > 0.0 ? report.distance_m / report.seconds : 0.0;
   report.track_err_rad_rms = error_count > 0 ? std::sqrt(error_sum / static_cast<double>(error_count)) : 0.0;
   for (double& share : report.contact_share) share /= std::max<long long>(1, step);
+  for (double& share : report.torque_limited_share) share /= std::max<long long>(1, step);
   report.pushed_impulse_ns = world.pushedImpulse();
   return report;
 }
