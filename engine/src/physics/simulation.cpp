@@ -211,14 +211,14 @@ void addEffort(const World& world, std::span<const double> torques,
   }
 }
 
-// Links whose servo torque is at its limit (within 0.1%) on any axis this step, counted into
-// `limited` (links).
-void countTorqueLimited(const BodyPlan& plan, std::span<const double> torques,
-                        const std::vector<double>& limits, const std::vector<int>& offsets,
-                        std::vector<double>& limited) {
-  for (size_t li = 1; li < plan.links.size(); ++li) {
-    const int dofs = plan.links[li].type == JointType::kBall ? 3
-                     : plan.links[li].type == JointType::kHinge ? 1 : 0;
+// Links whose servo torque (`torques`, the last step's) is at its limit (within 0.1%) on any
+// axis, counted into `limited` (links).
+void countTorqueLimited(const World& world, std::span<const double> torques,
+                        const std::vector<int>& offsets, std::vector<double>& limited) {
+  const BodyPlan& plan = world.plan();
+  const std::vector<double>& limits = world.servoTorqueLimits();
+  for (size_t li = 1; li < limits.size(); ++li) {
+    const int dofs = dofCount(plan.links[li].type);
     bool at_limit = false;
     for (int d = 0; d < dofs; ++d)
       at_limit = at_limit || (limits[li] > 0.0 &&
@@ -255,11 +255,11 @@ glm::dvec3 targetForward(const BodyPlan& plan, const TrackingController& control
   return glm::length(flat) > 1e-9 ? glm::normalize(flat) : glm::dvec3(0.0, 0.0, 1.0);
 }
 
-// Which way a body that dropped went: the centre of mass against the middle of its feet, in
+// Which way a falling body went: the centre of mass against the middle of its feet, in
 // the frame of the heading the target faces (targetForward): "backwards", "forwards",
 // "to the left" or "to the right" by the larger component, or "folded over its feet" within 15%
 // of the rig's size (the legs gave way under it).
-std::string dropDirection(const BodyPlan& plan, const World& world,
+std::string fallDirection(const BodyPlan& plan, const World& world,
                           const TrackingController& controller,
                           const std::vector<glm::dmat4>& transforms) {
   const std::vector<int>& feet = controller.feet();
@@ -287,7 +287,7 @@ struct FallContext {
 
 // A fall, first of: a link that may not touch the ground on it, the pelvis upside down, the
 // centre of mass below a share of its starting height; each says which way the body went
-// (dropDirection).
+// (fallDirection).
 void checkFall(const BodyPlan& plan, const World& world, const FallContext& now,
                const std::vector<char>& may_touch, double start_height, double fall_height_ratio,
                SimulationReport& report) {
@@ -302,7 +302,7 @@ void checkFall(const BodyPlan& plan, const World& world, const FallContext& now,
     reason << "centre of mass " << height << " m above the ground (started at " << start_height
            << " m)";
   if (reason.tellp() == 0) return;
-  const std::string way = dropDirection(plan, world, now.controller, now.transforms);
+  const std::string way = fallDirection(plan, world, now.controller, now.transforms);
   report.fell = true;
   report.fall_reason = (way.empty() ? "" : way + ": ") + reason.str();
   report.fall_time_s = world.time();
@@ -333,9 +333,6 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   report.contact_share.assign(feet.size(), 0.0);
   report.torque_limited_share.assign(plan.links.size(), 0.0);
   for (const Link& link : plan.links) report.links.push_back(link.name);
-  const std::vector<double> torque_limits =
-      jointTorqueLimits(plan, settings.tracking.support_torque_scale,
-                        settings.tracking.limb_torque_scale, settings.tracking.gravity_m_s2);
   const std::vector<int> dof_offsets = plan.dofOffsets();
   const std::vector<char> may_touch = groundLinks(plan);
 
@@ -407,7 +404,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     world.servoTorques(torques);
     world.jointVelocities(velocities);
     addEffort(world, torques, velocities, report);
-    countTorqueLimited(plan, torques, torque_limits, dof_offsets, report.torque_limited_share);
+    countTorqueLimited(world, torques, dof_offsets, report.torque_limited_share);
 
     // Contacts: footfalls, and any other link on the ground is a fall.
     const std::vector<std::uint8_t>& contacts = world.linkContacts();

@@ -135,6 +135,7 @@ struct World::Impl {
   std::vector<std::unique_ptr<btMultiBodyConstraint>> limits;       // hinge and ball ranges
   std::vector<std::unique_ptr<btMultiBodyConstraint>> servos;  // (links), null: no servo
   double servo_rate = 0.0;
+  std::vector<double> servo_limits;  // (links) N m, as enableServos was given them
 
   std::vector<std::pair<int, glm::dvec3>> pending_pushes;  // (link, impulse N s) for the next step
   glm::dvec3 pushed_impulse{0.0};                         // every push so far, N s
@@ -588,6 +589,7 @@ Status World::enableServos(std::span<const double> max_torque_nm, double rate) {
     return Status::error("servos: rate must be in (0, 1]");
   w.servo_rate = rate;
   w.servos.resize(n);
+  w.servo_limits.assign(n, 0.0);
   btMultiBody& mb = *w.body;
   for (size_t li = 1; li < n; ++li) {
     const double limit = max_torque_nm[li];
@@ -597,6 +599,7 @@ Status World::enableServos(std::span<const double> max_torque_nm, double rate) {
     const int i = Impl::bulletLink(static_cast<int>(li));
     const double impulse = limit * w.dt;
     if (limit == 0.0) continue;
+    w.servo_limits[li] = limit;
     if (w.plan.links[li].type == JointType::kBall) {
       auto motor = std::make_unique<btMultiBodySphericalJointMotor>(&mb, i, impulse);
       motor->setMaxAppliedImpulseMultiDof(btVector3(impulse, impulse, impulse));
@@ -634,6 +637,10 @@ void World::setServoTargets(const LinkPose& target) {
       motor->setVelocityTarget(0.0, 1.0);
     }
   }
+}
+
+const std::vector<double>& World::servoTorqueLimits() const {
+  return impl_->servo_limits;
 }
 
 void World::servoTorques(std::span<double> out) const {

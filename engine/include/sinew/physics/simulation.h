@@ -82,7 +82,7 @@ struct SimulationReport {
   std::vector<double> contact_share;  // (feet) share of steps with the foot on the ground
   std::vector<Footfall> footfalls;
   // (links; 0 for the base) share of steps in which a joint's servo torque reached its limit on
-  // any axis (jointTorqueLimits): a joint pinned there is too weak for what it is asked.
+  // any axis (World::servoTorqueLimits): a joint pinned there is too weak for what it is asked.
   std::vector<double> torque_limited_share;
   std::vector<std::string> links;   // (links) link names, for the share above
   motion::Clip motion;              // what the character did, on the original skeleton, at

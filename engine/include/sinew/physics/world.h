@@ -109,6 +109,9 @@ class World {
   void setServoTargets(const LinkPose& target);
   // Torques the servos applied in the last step (dofs, N m, each joint's frame).
   void servoTorques(std::span<double> out) const;
+  // Each servo's torque limit (links, N m, per axis; 0 for a joint without one), as
+  // enableServos set it; empty before.
+  const std::vector<double>& servoTorqueLimits() const;
 
   double dt() const;    // 1 / step_hz, seconds
   double time() const;  // simulated seconds since creation
