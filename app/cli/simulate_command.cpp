@@ -38,6 +38,7 @@ struct SimulateArgs {
   int harmonics = 5;
   std::string output;
   std::string json_path;
+  std::string trace_path;
   ImportFlags import;
   BodyFlags body;
 };
@@ -171,7 +172,51 @@ void printReport(const physics::SimulationReport& r) {
   printTorqueLimited(r);
 }
 
-// --output (the run on the rig's skeleton) and --json (the figures).
+// A CSV header cell: quoted when the name holds a comma, a quote or a line break.
+std::string csvCell(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// --trace: one row per step (physics::TraceStep), the feet and joints by name in the header.
+std::string traceCsv(const physics::SimulationReport& r) {
+  std::ostringstream csv;
+  csv.precision(6);
+  csv << "time_s,com_x_m,com_y_m,com_z_m,com_vx_m_s,com_vy_m_s,com_vz_m_s,target_com_x_m,"
+         "target_com_y_m,target_com_z_m,target_vx_m_s,target_vy_m_s,target_vz_m_s,stance_foot";
+  for (const std::string& foot : r.feet) {
+    const std::string f = toUtf8(foot);
+    for (const char* column : {"_contacts", "_x_m", "_y_m", "_z_m", "_force_n"})
+      csv << ',' << csvCell(f + column);
+  }
+  for (size_t li = 1; li < r.links.size(); ++li) {
+    const std::string link = toUtf8(r.links[li]);
+    csv << ',' << csvCell(link + "_torque_nm") << ',' << csvCell(link + "_at_limit");
+  }
+  csv << '\n';
+  auto vec = [&](const glm::dvec3& v) { csv << ',' << v.x << ',' << v.y << ',' << v.z; };
+  for (const physics::TraceStep& step : r.trace) {
+    csv << step.time_s;
+    vec(step.com);
+    vec(step.com_velocity);
+    vec(step.target_com);
+    vec(step.target_velocity);
+    csv << ',' << (step.stance_foot >= 0 ? csvCell(toUtf8(r.feet[static_cast<size_t>(step.stance_foot)])) : "");
+    for (size_t f = 0; f < step.foot_contacts.size(); ++f) {
+      csv << ',' << static_cast<int>(step.foot_contacts[f]);
+      vec(step.foot_positions[f]);
+      csv << ',' << step.foot_forces_n[f];
+    }
+    for (size_t li = 1; li < step.torques_nm.size(); ++li)
+      csv << ',' << step.torques_nm[li] << ',' << static_cast<int>(step.at_limit[li]);
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+// --output (the run on the rig's skeleton), --json (the figures) and --trace (every step).
 Status writeOutputs(const SimulateArgs& args, const motion::MotionAsset& asset,
                     const physics::SimulationReport& r) {
   if (!args.output.empty()) {
@@ -187,12 +232,21 @@ Status writeOutputs(const SimulateArgs& args, const motion::MotionAsset& asset,
     if (!status.ok()) return status;
     std::printf("wrote %s\n", args.json_path.c_str());
   }
+  if (!args.trace_path.empty()) {
+    if (Status status = writeFileAtomically(args.trace_path, traceCsv(r)); !status.ok())
+      return status;
+    std::printf("wrote %s: %zu steps\n", args.trace_path.c_str(), r.trace.size());
+  }
   return {};
 }
 
 int runSimulate(const SimulateArgs& args) {
   if (!args.controller_path.empty() && !args.target_path.empty())
     return fail("--controller and --target both give the coefficients: choose one");
+  if (!args.trace_path.empty() && args.seconds > physics::kMaxTracedSeconds)
+    return fail("--trace records every step, so at most " +
+                std::to_string(static_cast<int>(physics::kMaxTracedSeconds)) + " s (asked " +
+                std::to_string(static_cast<int>(std::ceil(args.seconds))) + " s)");
   Result<pipeline::ProjectSettings> flags = settingsFromFlags(args);
   if (!flags.ok()) return fail(flags.message());
   const pipeline::ProjectSettings& chosen = flags.value();
@@ -225,6 +279,7 @@ int runSimulate(const SimulateArgs& args) {
       return fail(status.message());
   }
   settings.start_moving = !args.from_standing;
+  settings.trace = !args.trace_path.empty();
   const physics::BodyPlan& plan = built.value();
   std::printf(
       "%s: %zu links, %d degrees of freedom, %.1f kg; tracking %s, stride %.3f s, for "
@@ -283,6 +338,10 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
   command->add_option("-o,--output", args->output,
                       "Write what the character did (.bvh, .glb, .gltf) on the rig's skeleton");
   command->add_option("--json", args->json_path, "Write the figures as JSON");
+  command->add_option("--trace", args->trace_path,
+                      "Write every step as CSV (.csv): centre of mass and velocity against the "
+                      "target's, the stance foot, each foot's contacts, position and load, each "
+                      "joint's torque and whether it is at its limit; runs of at most 120 s");
   args->import.addTo(*command);
   args->body.addTo(*command);
   command->callback([args, &exit_code]() {

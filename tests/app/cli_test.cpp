@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -401,6 +403,48 @@ TEST(CliTest, SimulateReportsJsonAndWritesWhatTheCharacterDid) {
   const test::CommandResult slope = test::runSinew("simulate --rig " + walk() + " --terrain slope:80");
   EXPECT_NE(slope.exit_code, 0);
   EXPECT_NE(slope.err.find("slope_deg"), std::string::npos) << slope.err;
+}
+
+// sinew simulate --trace: a CSV with one row per step, as many cells in every row as the header
+// names (a foot's five, a joint's two), finite numbers; too long a traced run is refused before
+// any work.
+TEST(CliTest, SimulateTracesEveryStepAsCsv) {
+  test::TempDir dir;
+  const auto csv_path = dir / "trace.csv";
+  const test::CommandResult result = test::runSinew("simulate --rig " + walk() +
+                                                    " --seconds 0.5 --trace " + test::quote(csv_path));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("120 steps"), std::string::npos) << result.out;
+  std::istringstream lines(test::readText(csv_path));
+  std::string header, line;
+  ASSERT_TRUE(std::getline(lines, header));
+  auto cells = [](const std::string& row) {
+    std::vector<std::string> out;
+    std::stringstream in(row);
+    for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+    if (!row.empty() && row.back() == ',') out.emplace_back();
+    return out;
+  };
+  const std::vector<std::string> names = cells(header);
+  EXPECT_EQ(names.front(), "time_s");
+  // 14 columns, five per foot (2), two per joint (12 joints below the pelvis).
+  EXPECT_EQ(names.size(), 14u + 5u * 2u + 2u * 12u) << header;
+  int rows = 0;
+  for (; std::getline(lines, line); ++rows) {
+    const std::vector<std::string> row = cells(line);
+    ASSERT_EQ(row.size(), names.size()) << line;
+    for (size_t c = 0; c < row.size(); ++c) {
+      if (names[c] == "stance_foot") continue;
+      const double value = std::stod(row[c]);
+      EXPECT_TRUE(std::isfinite(value)) << names[c];
+    }
+  }
+  EXPECT_EQ(rows, 120);
+  const test::CommandResult too_long = test::runSinew("simulate --rig " + walk() +
+                                                      " --seconds 200 --trace " + test::quote(csv_path));
+  EXPECT_NE(too_long.exit_code, 0);
+  EXPECT_NE(too_long.err.find("--trace records every step, so at most 120 s"), std::string::npos)
+      << too_long.err;
 }
 
 // sinew evolve: the files a pipeline picks up, a controller that replays with sinew simulate, a

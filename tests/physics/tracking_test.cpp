@@ -430,6 +430,63 @@ TEST(Simulation, TheReportCountsStepsAtTheTorqueLimit) {
   }
 }
 
+// A traced run keeps one row per step that agrees with the report's own counts (contacts, steps
+// at the torque limit), the target's centre of mass starts where the body's does and moves as
+// the motion does, and every number is finite; a traced run longer than the cap is refused.
+TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  SimulationSettings settings;
+  settings.seconds = 0.5;
+  settings.trace = true;
+  const SimulationReport r = simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value();
+  ASSERT_FALSE(r.fell) << r.fall_reason;
+  const double dt = 1.0 / settings.world.step_hz;
+  ASSERT_EQ(r.trace.size(), 120u);
+  std::vector<double> down(r.feet.size(), 0.0), limited(biped.plan.links.size(), 0.0);
+  for (size_t k = 0; k < r.trace.size(); ++k) {
+    const TraceStep& step = r.trace[k];
+    EXPECT_NEAR(step.time_s, dt * static_cast<double>(k + 1), 1e-9);
+    ASSERT_EQ(step.foot_contacts.size(), r.feet.size());
+    ASSERT_EQ(step.at_limit.size(), biped.plan.links.size());
+    for (size_t f = 0; f < r.feet.size(); ++f) {
+      down[f] += step.foot_contacts[f] > 0 ? 1.0 : 0.0;
+      EXPECT_GE(step.foot_forces_n[f], 0.0);
+      if (step.foot_contacts[f] == 0) {
+        EXPECT_EQ(step.foot_forces_n[f], 0.0);
+      }
+    }
+    if (step.stance_foot >= 0) {  // chosen from the contacts before the step
+      ASSERT_GT(k, 0u);
+      EXPECT_GT(r.trace[k - 1].foot_contacts[static_cast<size_t>(step.stance_foot)], 0);
+    }
+    for (size_t li = 0; li < step.at_limit.size(); ++li) limited[li] += step.at_limit[li];
+    for (const glm::dvec3& v : {step.com, step.com_velocity, step.target_com, step.target_velocity})
+      EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+    for (double t : step.torques_nm) EXPECT_TRUE(std::isfinite(t) && t >= 0.0);
+  }
+  for (size_t f = 0; f < r.feet.size(); ++f)
+    EXPECT_NEAR(down[f] / 120.0, r.contact_share[f], 1e-12) << r.feet[f];
+  for (size_t li = 0; li < limited.size(); ++li)
+    EXPECT_NEAR(limited[li] / 120.0, r.torque_limited_share[li], 1e-12) << r.links[li];
+  // The body starts in the target's pose, so the two centres of mass start together; the walk
+  // goes forward (+Z) at about 1.3 m/s, the target's velocity with it.
+  EXPECT_LT(glm::length(r.trace[0].com - r.trace[0].target_com), 0.02);
+  EXPECT_NEAR(r.trace[0].target_velocity.z, r.trace[0].com_velocity.z, 0.1);
+  double mean_vz = 0.0;
+  for (const TraceStep& step : r.trace) mean_vz += step.target_velocity.z / 120.0;
+  EXPECT_GT(mean_vz, 0.8);
+  EXPECT_LT(mean_vz, 2.0);
+
+  settings.seconds = kMaxTracedSeconds + 1.0;
+  const Result<SimulationReport> long_run = simulate(biped.plan, biped.asset.skeleton, biped.target, settings);
+  ASSERT_FALSE(long_run.ok());
+  EXPECT_NE(long_run.message().find("trace"), std::string::npos) << long_run.message();
+  settings.trace = false;
+  settings.seconds = 0.5;
+  EXPECT_TRUE(simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value().trace.empty());
+}
+
 // Legs balance in pairs: the biped's two under its pelvis; the quadruped's forelegs under the
 // chest and its hind legs under the pelvis, each pair with its own hips.
 TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {

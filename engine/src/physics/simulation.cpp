@@ -48,6 +48,9 @@ Status SimulationSettings::validate() const {
     return Status::error("record_fps must be in (0, step_hz]");
   if (!(std::isfinite(fall_height_ratio) && fall_height_ratio > 0.0 && fall_height_ratio < 1.0))
     return Status::error("fall_height_ratio must be in (0, 1)");
+  if (trace && seconds > kMaxTracedSeconds)
+    return Status::error("trace: a traced run records every step, so at most " +
+                         std::to_string(static_cast<int>(kMaxTracedSeconds)) + " s");
   for (size_t i = 0; i < pushes.size(); ++i) {
     const Push& p = pushes[i];
     if (!(std::isfinite(p.time_s) && p.time_s >= 0.0) ||
@@ -211,21 +214,50 @@ void addEffort(const World& world, std::span<const double> torques,
   }
 }
 
-// Links whose servo torque (`torques`, the last step's) is at its limit (within 0.1%) on any
-// axis, counted into `limited` (links).
-void countTorqueLimited(const World& world, std::span<const double> torques,
-                        const std::vector<int>& offsets, std::vector<double>& limited) {
+// Per link (links), whether its servo torque (`torques`, the last step's) is at its limit (within
+// 0.1%) on any axis.
+void torqueLimitFlags(const World& world, std::span<const double> torques,
+                      const std::vector<int>& offsets, std::vector<std::uint8_t>& at_limit) {
   const BodyPlan& plan = world.plan();
   const std::vector<double>& limits = world.servoTorqueLimits();
+  at_limit.assign(plan.links.size(), 0);
   for (size_t li = 1; li < limits.size(); ++li) {
     const int dofs = dofCount(plan.links[li].type);
-    bool at_limit = false;
     for (int d = 0; d < dofs; ++d)
-      at_limit = at_limit || (limits[li] > 0.0 &&
-                              std::abs(torques[static_cast<size_t>(offsets[li] + d)]) >=
-                                  0.999 * limits[li]);
-    if (at_limit) limited[li] += 1.0;
+      if (limits[li] > 0.0 &&
+          std::abs(torques[static_cast<size_t>(offsets[li] + d)]) >= 0.999 * limits[li])
+        at_limit[li] = 1;
   }
+}
+
+// The step as a TraceStep (SimulationSettings::trace); `previous_target` (the last step's
+// target_com) is updated.
+TraceStep traceStep(const World& world, const TrackingController& controller,
+                    const std::vector<glm::dmat4>& transforms, std::span<const double> torques,
+                    const std::vector<int>& offsets, const std::vector<std::uint8_t>& at_limit,
+                    glm::dvec3& previous_target) {
+  const BodyPlan& plan = world.plan();
+  TraceStep row;
+  row.time_s = world.time();
+  row.com = world.centreOfMass();
+  row.com_velocity = world.linearMomentum() / world.totalMass();
+  row.target_com = poseKinematics(plan, controller.motionTarget()).com;
+  row.target_velocity = (row.target_com - previous_target) / world.dt();
+  previous_target = row.target_com;
+  row.stance_foot = controller.stanceFoot();
+  for (int f : controller.feet()) {
+    const size_t li = static_cast<size_t>(f);
+    row.foot_contacts.push_back(world.linkContacts()[li]);
+    row.foot_positions.push_back(glm::dvec3(transforms[li][3]));
+    row.foot_forces_n.push_back(world.linkNormalForces()[li]);
+  }
+  row.torques_nm.assign(plan.links.size(), 0.0);
+  for (size_t li = 1; li < plan.links.size(); ++li)
+    for (int d = 0; d < dofCount(plan.links[li].type); ++d)
+      row.torques_nm[li] = std::max(row.torques_nm[li],
+                                    std::abs(torques[static_cast<size_t>(offsets[li] + d)]));
+  row.at_limit = at_limit;
+  return row;
 }
 
 // Footfalls: a foot that touches the ground after a step off it; the steps each foot is down.
@@ -340,6 +372,11 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   std::vector<double> zero(dofs, 0.0), torques(dofs, 0.0), velocities(dofs, 0.0);
   std::vector<glm::dmat4> transforms(plan.links.size());
   std::vector<char> was_down(feet.size(), 1);
+  std::vector<std::uint8_t> at_limit;
+  // SimulationSettings::trace: the target's centre of mass at the last step, the start's velocity.
+  glm::dvec3 target_com = poseKinematics(plan, controller.motionTarget()).com;
+  const glm::dvec3 start_velocity = world.linearMomentum() / world.totalMass();
+  if (settings.trace) report.trace.reserve(static_cast<size_t>(settings.seconds * settings.world.step_hz) + 1);
   Recorder recorder(skeleton, target);
   report.motion.name = target.name + "_simulated";
   report.motion.frame_time = 1.0 / settings.record_fps;
@@ -404,12 +441,18 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     world.servoTorques(torques);
     world.jointVelocities(velocities);
     addEffort(world, torques, velocities, report);
-    countTorqueLimited(world, torques, dof_offsets, report.torque_limited_share);
+    torqueLimitFlags(world, torques, dof_offsets, at_limit);
+    for (size_t li = 0; li < at_limit.size(); ++li) report.torque_limited_share[li] += at_limit[li];
 
     // Contacts: footfalls, and any other link on the ground is a fall.
     const std::vector<std::uint8_t>& contacts = world.linkContacts();
     world.linkTransforms(transforms);
     countFootfalls(world, feet, contacts, transforms, was_down, report);
+    if (settings.trace) {
+      report.trace.push_back(
+          traceStep(world, controller, transforms, torques, dof_offsets, at_limit, target_com));
+      if (step == 0) report.trace.back().target_velocity = start_velocity;
+    }
     const glm::dvec3 up = glm::dmat3(transforms[0]) * pelvis_up;
     report.min_uprightness = std::min(report.min_uprightness, up.y);
     if (!report.fell)

@@ -339,6 +339,23 @@ std::vector<double> jointTorqueLimits(const BodyPlan& plan, double support_scale
   return limits;
 }
 
+PoseKinematics poseKinematics(const BodyPlan& plan, const LinkPose& pose) {
+  const size_t n = plan.links.size();
+  const std::vector<glm::dquat> rotations = linkWorldRotations(plan, pose);
+  PoseKinematics out;
+  out.pivots.assign(n, pose.base_position);
+  for (size_t li = 0; li < n; ++li) {
+    const Link& link = plan.links[li];
+    if (li > 0) {
+      const size_t parent = static_cast<size_t>(link.parent);
+      out.pivots[li] = out.pivots[parent] + rotations[parent] * link.pivot;
+    }
+    out.com += (out.pivots[li] + rotations[li] * link.com) * link.mass_kg;
+  }
+  out.com /= plan.total_mass_kg;
+  return out;
+}
+
 std::vector<glm::dquat> linkWorldRotations(const BodyPlan& plan, const LinkPose& pose) {
   std::vector<glm::dquat> world(plan.links.size(), pose.base_rotation);
   for (size_t li = 1; li < plan.links.size(); ++li) {
@@ -482,22 +499,11 @@ void TrackingController::update(World& world) {
 }
 
 void TrackingController::referenceKinematics() {
-  const BodyPlan& plan = *plan_;
-  const size_t n = plan.links.size();
-  const std::vector<glm::dquat> rotations = linkWorldRotations(plan, motion_);
-  std::vector<glm::dvec3> origins(n, motion_.base_position);
-  glm::dvec3 com(0.0);
-  for (size_t li = 0; li < n; ++li) {
-    const Link& link = plan.links[li];
-    if (li > 0) {
-      const size_t parent = static_cast<size_t>(link.parent);
-      origins[li] = origins[parent] + rotations[parent] * link.pivot;
-    }
-    com += (origins[li] + rotations[li] * link.com) * link.mass_kg;
-  }
-  reference_com_ = com / plan.total_mass_kg;
+  const PoseKinematics kinematics = poseKinematics(*plan_, motion_);
+  reference_com_ = kinematics.com;
   reference_ankles_.resize(feet_.size());
-  for (size_t f = 0; f < feet_.size(); ++f) reference_ankles_[f] = origins[static_cast<size_t>(feet_[f])];
+  for (size_t f = 0; f < feet_.size(); ++f)
+    reference_ankles_[f] = kinematics.pivots[static_cast<size_t>(feet_[f])];
 }
 
 void TrackingController::applyFeedback(const World& world) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct Push {
   std::string link;              // the link (its skeleton joint's name); empty: the base
 };
 
+// Runs with SimulationSettings::trace record every step, so at most this long.
+inline constexpr double kMaxTracedSeconds = 120.0;
+
 struct SimulationSettings {
   double seconds = 10.0;      // simulated time, (0, 3600]
   WorldSettings world;
@@ -40,6 +44,8 @@ struct SimulationSettings {
   double fall_height_ratio = 0.5;  // fallen when the centre of mass drops below this share of
                                    // its starting height above the ground, (0, 1)
   bool stop_at_fall = true;   // end the run when the character falls
+  bool trace = false;         // record SimulationReport::trace, one TraceStep per step (seconds
+                              // <= kMaxTracedSeconds)
   const spectral::TargetMotion* reference = nullptr;  // when set, track_err_rad_rms is measured
                                                      // against this motion (the style the search
                                                      // must keep), not the one the controller
@@ -55,6 +61,26 @@ struct Footfall {
   int foot = 0;             // index into SimulationReport::feet
   double time_s = 0.0;      // touchdown
   glm::dvec3 position{0.0};  // the foot's pivot at touchdown, world metres
+};
+
+// One step of a traced run, at the step's end: what the body did against what its servos were
+// aiming at, so a fall can be read step by step (which foot was down, which joint gave out).
+struct TraceStep {
+  double time_s = 0.0;
+  glm::dvec3 com{0.0};              // centre of mass, world metres
+  glm::dvec3 com_velocity{0.0};     // m/s
+  glm::dvec3 target_com{0.0};       // the centre of mass of the motion's pose the servos aimed at
+                                    // in the step (before balance feedback), world metres
+  glm::dvec3 target_velocity{0.0};  // its change over the step, m/s (the first step: the start's)
+  int stance_foot = -1;             // the first leg pair's stance foot in the step
+                                    // (SimulationReport::feet), chosen from the contacts before
+                                    // it; -1: none was down
+  std::vector<std::uint8_t> foot_contacts;  // (feet) contact points with the ground
+  std::vector<glm::dvec3> foot_positions;   // (feet) the foot's pivot (ankle), world metres
+  std::vector<double> foot_forces_n;        // (feet) the ground's normal force
+  std::vector<double> torques_nm;           // (links; 0 for the base) largest |servo torque| of
+                                            // the joint's axes
+  std::vector<std::uint8_t> at_limit;       // (links) 1: at its torque limit on an axis
 };
 
 struct SimulationReport {
@@ -88,6 +114,7 @@ struct SimulationReport {
   motion::Clip motion;              // what the character did, on the original skeleton, at
                                     // record_fps
   std::vector<glm::dvec3> com;      // (recorded frames) centre of mass, world metres
+  std::vector<TraceStep> trace;     // (steps) with SimulationSettings::trace, else empty
 };
 
 // Runs the simulation. The skeleton must be the one `plan` and `target` were made from. Fails on

@@ -222,5 +222,11 @@ MotionState targetState(const BodyPlan& plan, const motion::Skeleton& skeleton,
 
 // World rotations of every link for a pose (links), by forward kinematics from the base.
 std::vector<glm::dquat> linkWorldRotations(const BodyPlan& plan, const LinkPose& pose);
+// A pose's link pivots (links, world metres) and its centre of mass, by forward kinematics.
+struct PoseKinematics {
+  std::vector<glm::dvec3> pivots;
+  glm::dvec3 com{0.0};
+};
+PoseKinematics poseKinematics(const BodyPlan& plan, const LinkPose& pose);
 
 }  // namespace sinew::physics
