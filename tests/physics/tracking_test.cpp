@@ -487,6 +487,53 @@ TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
   EXPECT_TRUE(simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value().trace.empty());
 }
 
+// A footfall is a touchdown after a swing, not a planted sole chattering: the footfalls are
+// exactly the touchdowns (read from the trace) that follow a quarter of the foot's swing in the
+// target off the ground, and the bundled walk's chattering soles touch down more often than that.
+TEST(Simulation, AFootfallIsATouchdownAfterASwingNotAChatter) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  SimulationSettings settings;
+  settings.seconds = 2.0;
+  settings.trace = true;
+  const SimulationReport r = simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value();
+  std::vector<int> feet;
+  for (size_t li = 0; li < biped.plan.links.size(); ++li)
+    if (biped.plan.links[li].foot) feet.push_back(static_cast<int>(li));
+  const std::vector<FootCycle> cycles =
+      targetFootCycles(biped.plan, biped.asset.skeleton, biped.target, feet);
+  ASSERT_EQ(cycles.size(), r.feet.size());
+  const double period = biped.target.period(), dt = 1.0 / settings.world.step_hz;
+  std::vector<Footfall> expected;
+  int touchdowns = 0;
+  for (size_t f = 0; f < r.feet.size(); ++f) {
+    ASSERT_GE(cycles[f].liftoff_s, 0.0);
+    const double swing = std::fmod(cycles[f].touchdown_s - cycles[f].liftoff_s + period, period);
+    const int gap = static_cast<int>(std::lround(0.25 * swing / dt));
+    EXPECT_GT(gap, 5);  // longer than a chatter (20 ms)
+    int off = r.trace[0].foot_contacts[f] > 0 ? 0 : gap;
+    for (size_t k = 1; k < r.trace.size(); ++k) {
+      if (r.trace[k].foot_contacts[f] == 0) {
+        ++off;
+        continue;
+      }
+      if (off > 0) ++touchdowns;
+      if (off >= gap) expected.push_back({static_cast<int>(f), r.trace[k].time_s, r.trace[k].foot_positions[f]});
+      off = 0;
+    }
+  }
+  ASSERT_EQ(r.footfalls.size(), expected.size());
+  EXPECT_GT(touchdowns, static_cast<int>(expected.size()));
+  std::printf("bundled walk, 2 s: %d touchdowns, %zu footfalls\n", touchdowns, r.footfalls.size());
+  for (const Footfall& fall : r.footfalls) {
+    bool found = false;
+    for (const Footfall& e : expected)
+      found = found || (e.foot == fall.foot && std::abs(e.time_s - fall.time_s) < 1e-9 &&
+                        glm::length(e.position - fall.position) < 1e-12);
+    EXPECT_TRUE(found) << r.feet[static_cast<size_t>(fall.foot)] << " at " << fall.time_s;
+  }
+}
+
 // Legs balance in pairs: the biped's two under its pelvis; the quadruped's forelegs under the
 // chest and its hind legs under the pelvis, each pair with its own hips.
 TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {
