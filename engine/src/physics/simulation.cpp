@@ -363,6 +363,65 @@ void checkFall(const BodyPlan& plan, const World& world, const FallContext& now,
   report.fall_time_s = world.time();
 }
 
+// The report before the first step: the body's mass, its feet and links by name, the recording's
+// header, the shares at zero.
+SimulationReport startReport(const BodyPlan& plan, const World& world,
+                             const TrackingController& controller, const motion::Skeleton& skeleton,
+                             const spectral::TargetMotion& target,
+                             const SimulationSettings& settings) {
+  SimulationReport report;
+  report.mass_kg = world.totalMass();
+  for (int f : controller.feet()) report.feet.push_back(plan.links[static_cast<size_t>(f)].name);
+  report.contact_share.assign(controller.feet().size(), 0.0);
+  report.torque_limited_share.assign(plan.links.size(), 0.0);
+  for (const Link& link : plan.links) report.links.push_back(link.name);
+  report.motion.name = target.name + "_simulated";
+  report.motion.frame_time = 1.0 / settings.record_fps;
+  report.motion.joint_count = skeleton.jointCount();
+  if (settings.trace)
+    report.trace.reserve(static_cast<size_t>(settings.seconds * settings.world.step_hz) + 1);
+  return report;
+}
+
+// What each step adds to the report from the servos and the ground: effort, steps at the torque
+// limit, contacts and footfalls, and (SimulationSettings::trace) the step's TraceStep.
+struct StepMeter {
+  std::vector<int> dof_offsets;
+  std::vector<double> torques, velocities;     // (dofs) the last step's
+  std::vector<glm::dmat4> transforms;          // (links) after the last step
+  std::vector<std::uint8_t> at_limit;          // (links)
+  std::vector<int> footfall_gaps, off_ground;  // (feet) countFootfalls
+  glm::dvec3 target_com{0.0};                  // the last step's (trace)
+  glm::dvec3 start_velocity{0.0};              // the first step's target velocity (trace)
+
+  StepMeter(const World& world, const TrackingController& controller, double period_s)
+      : dof_offsets(world.plan().dofOffsets()),
+        torques(static_cast<size_t>(world.dofCount()), 0.0),
+        velocities(static_cast<size_t>(world.dofCount()), 0.0),
+        transforms(world.plan().links.size()),
+        footfall_gaps(footfallGaps(world, controller, period_s)),
+        off_ground(controller.feet().size(), -1),
+        target_com(poseKinematics(world.plan(), controller.motionTarget()).com),
+        start_velocity(world.linearMomentum() / world.totalMass()) {}
+
+  void measure(const World& world, const TrackingController& controller, bool trace,
+               SimulationReport& report) {
+    world.servoTorques(torques);
+    world.jointVelocities(velocities);
+    addEffort(world, torques, velocities, report);
+    torqueLimitFlags(world, torques, dof_offsets, at_limit);
+    for (size_t li = 0; li < at_limit.size(); ++li) report.torque_limited_share[li] += at_limit[li];
+    world.linkTransforms(transforms);
+    countFootfalls(world, controller.feet(), world.linkContacts(), transforms, footfall_gaps,
+                   off_ground, report);
+    if (!trace) return;
+    const bool first = report.trace.empty();
+    report.trace.push_back(
+        traceStep(world, controller, transforms, torques, dof_offsets, at_limit, target_com));
+    if (first) report.trace.back().target_velocity = start_velocity;
+  }
+};
+
 }  // namespace
 
 Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& skeleton,
@@ -381,30 +440,11 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   World& world = *made.value().world;
   TrackingController& controller = *made.value().controller;
 
-  SimulationReport report;
-  report.mass_kg = world.totalMass();
-  const std::vector<int>& feet = controller.feet();
-  for (int f : feet) report.feet.push_back(plan.links[static_cast<size_t>(f)].name);
-  report.contact_share.assign(feet.size(), 0.0);
-  report.torque_limited_share.assign(plan.links.size(), 0.0);
-  for (const Link& link : plan.links) report.links.push_back(link.name);
-  const std::vector<int> dof_offsets = plan.dofOffsets();
+  SimulationReport report = startReport(plan, world, controller, skeleton, target, settings);
   const std::vector<char> may_touch = groundLinks(plan);
-
-  const size_t dofs = static_cast<size_t>(world.dofCount());
-  std::vector<double> zero(dofs, 0.0), torques(dofs, 0.0), velocities(dofs, 0.0);
-  std::vector<glm::dmat4> transforms(plan.links.size());
-  const std::vector<int> footfall_gaps = footfallGaps(world, controller, target.period());
-  std::vector<int> off_ground(feet.size(), -1);
-  std::vector<std::uint8_t> at_limit;
-  // SimulationSettings::trace: the target's centre of mass at the last step, the start's velocity.
-  glm::dvec3 target_com = poseKinematics(plan, controller.motionTarget()).com;
-  const glm::dvec3 start_velocity = world.linearMomentum() / world.totalMass();
-  if (settings.trace) report.trace.reserve(static_cast<size_t>(settings.seconds * settings.world.step_hz) + 1);
+  const std::vector<double> zero(static_cast<size_t>(world.dofCount()), 0.0);
+  StepMeter meter(world, controller, target.period());
   Recorder recorder(skeleton, target);
-  report.motion.name = target.name + "_simulated";
-  report.motion.frame_time = 1.0 / settings.record_fps;
-  report.motion.joint_count = skeleton.jointCount();
 
   // Uprightness is the pelvis's up against the world's, "up" being what the motion itself holds
   // up at its start (a rig's pelvis axes are its own: Bandai's local Y lies 92 degrees off).
@@ -462,25 +502,14 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
       wanted = &reference_links;
     }
     addTrackingError(plan, world.jointPositions(), *wanted, error_sum, error_count);
-    world.servoTorques(torques);
-    world.jointVelocities(velocities);
-    addEffort(world, torques, velocities, report);
-    torqueLimitFlags(world, torques, dof_offsets, at_limit);
-    for (size_t li = 0; li < at_limit.size(); ++li) report.torque_limited_share[li] += at_limit[li];
+    meter.measure(world, controller, settings.trace, report);
 
-    // Contacts: footfalls, and any other link on the ground is a fall.
-    const std::vector<std::uint8_t>& contacts = world.linkContacts();
-    world.linkTransforms(transforms);
-    countFootfalls(world, feet, contacts, transforms, footfall_gaps, off_ground, report);
-    if (settings.trace) {
-      report.trace.push_back(
-          traceStep(world, controller, transforms, torques, dof_offsets, at_limit, target_com));
-      if (step == 0) report.trace.back().target_velocity = start_velocity;
-    }
+    // Any link on the ground but a foot is a fall.
+    const std::vector<glm::dmat4>& transforms = meter.transforms;
     const glm::dvec3 up = glm::dmat3(transforms[0]) * pelvis_up;
     report.min_uprightness = std::min(report.min_uprightness, up.y);
     if (!report.fell)
-      checkFall(plan, world, {contacts, transforms, controller, up.y},
+      checkFall(plan, world, {world.linkContacts(), transforms, controller, up.y},
                 may_touch, start_height, settings.fall_height_ratio, report);
     if (static_cast<double>(step + 1) + 1e-9 >= next_record) {
       recorder.record(world, report);
