@@ -430,15 +430,21 @@ TEST(Simulation, TheReportCountsStepsAtTheTorqueLimit) {
   }
 }
 
+// Settings for a traced run of `seconds`.
+SimulationSettings tracedSettings(double seconds) {
+  SimulationSettings settings;
+  settings.seconds = seconds;
+  settings.trace = true;
+  return settings;
+}
+
 // A traced run keeps one row per step that agrees with the report's own counts (contacts, steps
 // at the torque limit), the target's centre of mass starts where the body's does and moves as
 // the motion does, and every number is finite; a traced run longer than the cap is refused.
 TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  SimulationSettings settings;
-  settings.seconds = 0.5;
-  settings.trace = true;
+  SimulationSettings settings = tracedSettings(0.5);
   const SimulationReport r = simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value();
   ASSERT_FALSE(r.fell) << r.fall_reason;
   const double dt = 1.0 / settings.world.step_hz;
@@ -493,9 +499,7 @@ TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
 TEST(Simulation, AFootfallIsATouchdownAfterASwingNotAChatter) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  SimulationSettings settings;
-  settings.seconds = 2.0;
-  settings.trace = true;
+  const SimulationSettings settings = tracedSettings(2.0);
   const SimulationReport r = simulate(biped.plan, biped.asset.skeleton, biped.target, settings).value();
   std::vector<int> feet;
   for (size_t li = 0; li < biped.plan.links.size(); ++li)
