@@ -18,6 +18,7 @@
 #include "cli/controller_file.h"
 #include "cli/distributed.h"
 #include "cli/evolve.h"
+#include "cli/report_lines.h"
 #include "sinew/core/file_io.h"
 #include "sinew/core/text.h"
 #include "sinew/pipeline/physical_loop.h"
@@ -447,6 +448,7 @@ int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
   std::printf("best after %d generations (%lld evaluations): %s\n", snap->generation,
               snap->evaluations, termsLine(snap->best_terms).c_str());
   const pipeline::BestReplay best = pipeline::replayBest(session.problem(), snap->best_point);
+  printTorqueLimited(best.run);
   if (Status s = reportStyle(session.problem(), best, settings.edits, out); !s.ok())
     return fail(s.message());
   Result<bool> looped = writeLoop(session.problem(), best, args, settings.edits, rig.asset);

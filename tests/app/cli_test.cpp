@@ -1,4 +1,5 @@
 // The sinew command line, run as a user runs it: exit codes, one-line errors, JSON that parses.
+#include <cstdio>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -482,6 +483,22 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   // reloaded controller's base rotations once were re-normalised, and an evolved stepper that
   // walked its 10 s window fell at 7.55 s on replay).
   EXPECT_EQ(figures["distance_m"].get<double>(), best["fitness"]["distance_m"].get<double>());
+  // The search's summary names the joints at their torque limit as the replay measures them.
+  double most = 0.0;
+  std::string busiest;
+  for (const nlohmann::json& joint : figures["torque_limited"])
+    if (joint["share"].get<double>() > most) {
+      most = joint["share"].get<double>();
+      busiest = joint["link"].get<std::string>();
+    }
+  if (most >= 0.05) {
+    char expected[96];
+    std::snprintf(expected, sizeof(expected), "at the torque limit: %s %.0f%%", busiest.c_str(),
+                  100.0 * most);
+    EXPECT_NE(run.out.find(expected), std::string::npos) << expected << "\n" << run.out;
+  } else {
+    EXPECT_EQ(run.out.find("at the torque limit"), std::string::npos) << run.out;
+  }
   // Resumed without a new budget: refused, saying why; with one, it continues at generation 3.
   const test::CommandResult spent =
       test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
