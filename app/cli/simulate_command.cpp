@@ -117,10 +117,11 @@ std::string controllerRig(const std::string& path) {
 
 // --balance CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO[,...] into the gains.
 Status applyBalanceFlag(const std::vector<double>& balance, physics::BalanceGains& b) {
-  if (balance.size() != 5 && balance.size() != 8 && balance.size() != 9)
+  if (balance.size() != 5 && balance.size() != 8 && balance.size() != 9 && balance.size() != 12)
     return Status::error(
         "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO (or "
-        "8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT, or 9, then HEADING), got " +
+        "8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT, or 9, then HEADING, or 12, then "
+        "STANCE_SAGITTAL,STANCE_CORONAL,STANCE_VERTICAL), got " +
         std::to_string(balance.size()));
   for (size_t i = 0; i < balance.size(); ++i) {
     const int g = static_cast<int>(i);
@@ -313,7 +314,8 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
                    "Balance feedback gains CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO "
                    "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1), optionally then "
                    "ANKLE_SAGITTAL,ANKLE_CORONAL (rad/(m/s)),SWING_LIFT (per rig size, 0..0.1) "
-                   "and then HEADING (share 0..1)")
+                   "and then HEADING (share 0..1), then STANCE_SAGITTAL,STANCE_CORONAL,"
+                   "STANCE_VERTICAL (s)")
       ->delimiter(',');
   command->add_flag("--from-standing", args->from_standing,
                     "Start standing at rest and blend into the motion over 1 s (default: start "

@@ -137,6 +137,57 @@ TEST(TrackingController, SwingLiftRaisesTheSwingFootStraightUp) {
             1e-9);
 }
 
+// The stance gains move a planted foot's target by gain x the centre of mass's velocity error:
+// a body started 1 m/s faster than the target has its stance foot's target moved forward by
+// about stance_sagittal x 1 m (the ground holds the foot, so the servos hold the body back).
+TEST(TrackingController, StanceGainsMoveThePlantedFootAgainstTheVelocityError) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
+  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
+  glm::dvec3 travel = state.base_linear;
+  travel.y = 0.0;
+  travel = glm::normalize(travel);
+  ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
+                                   state.joint_velocities).ok());
+  TrackingSettings settings;
+  settings.ramp_s = 0.0;
+  settings.balance.torso = 0.0;  // only the stance gains move a stance foot's target
+  settings.balance.swing_lift = 0.0;
+  settings.balance.stance_sagittal = 0.05;
+  auto made = TrackingController::create(*world, biped.asset.skeleton, biped.target, state.pose,
+                                         settings);
+  ASSERT_TRUE(made.ok()) << made.message();
+  TrackingController& controller = *made.value();
+  const std::vector<int> feet = footLinks(biped.plan);
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  glm::dvec3 previous_com(0.0);
+  int checked = 0;
+  for (int k = 0; k < 40 && checked == 0; ++k) {
+    controller.update(*world);
+    const glm::dvec3 com = poseKinematics(biped.plan, controller.motionTarget()).com;
+    const glm::dvec3 error =
+        world->linearMomentum() / world->totalMass() - (com - previous_com) / world->dt();
+    previous_com = com;
+    for (int foot : feet) {
+      const size_t f = static_cast<size_t>(foot);
+      if (k < 2 || world->linkContacts()[f] == 0) continue;
+      const glm::dvec3 moved = linkOrigins(biped.plan, controller.target())[f] -
+                               linkOrigins(biped.plan, controller.motionTarget())[f];
+      const double asked = 0.05 * glm::dot(error, travel);
+      std::printf("step %d, foot %zu: velocity error %.2f m/s forward; foot moved %.1f cm "
+                  "forward (asked %.1f), %.1f cm up\n",
+                  k, f, glm::dot(error, travel), 100.0 * glm::dot(moved, travel), 100.0 * asked,
+                  100.0 * moved.y);
+      EXPECT_GT(asked, 0.02);  // the body still runs ahead of the target
+      EXPECT_NEAR(glm::dot(moved, travel), asked, 0.15 * asked);
+      ++checked;
+    }
+    world->step(zero);
+  }
+  EXPECT_GT(checked, 0) << "no foot came down in 40 steps";
+}
+
 // The motion the feedback compares the body with is the target's whole pose, its travel
 // included: the reference centre of mass moves at the clip's speed (it stood still before, so
 // the velocity gains saw the whole walking speed as an error).

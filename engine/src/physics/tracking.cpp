@@ -69,9 +69,9 @@ std::pair<int, int> swingOf(const std::vector<double>& h, double ground, double 
   return {up, down};
 }
 
-// One damped least-squares step of liftFoot.
-void liftFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
-              double lift) {
+// One damped least-squares step of moveFoot.
+void moveFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
+                  const glm::dvec3& displacement) {
   std::vector<glm::dmat4> frames;
   linkTransformsOf(plan, pose, frames);
   const glm::dvec3 ankle(frames[static_cast<size_t>(foot)][3]);
@@ -100,7 +100,7 @@ void liftFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& 
   for (const Column& c : columns) jjt += glm::outerProduct(c.moves, c.moves);
   const double damping = 0.02 * plan.size_m;
   const glm::dvec3 y =
-      glm::inverse(jjt + glm::dmat3(damping * damping)) * glm::dvec3(0.0, lift, 0.0);
+      glm::inverse(jjt + glm::dmat3(damping * damping)) * displacement;
   // Each leg link turns by its columns' share, its children with it; the foot stays as it was.
   const std::vector<glm::dquat> world = linkWorldRotations(plan, pose);
   glm::dquat turned(1.0, 0.0, 0.0, 0.0);  // what the links above have turned by, world
@@ -127,18 +127,19 @@ void liftFootStep(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& 
         coordinateFor(foot_link, parent_new, world[static_cast<size_t>(foot)]);
 }
 
-// Raises `foot`'s pivot by `lift` metres (world up) in `pose` by two damped least-squares steps
-// over the links of `leg` (top to bottom, the foot's parent last); the foot keeps its attitude.
-void liftFoot(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
-              double lift) {
-  const auto pivotHeight = [&] {
+// Moves `foot`'s pivot by `displacement` (world, metres) in `pose` by two damped least-squares
+// steps over the links of `leg` (top to bottom, the foot's parent last); the foot keeps its
+// attitude.
+void moveFoot(const BodyPlan& plan, LinkPose& pose, const std::vector<int>& leg, int foot,
+              const glm::dvec3& displacement) {
+  const auto pivot = [&] {
     std::vector<glm::dmat4> frames;
     linkTransformsOf(plan, pose, frames);
-    return frames[static_cast<size_t>(foot)][3].y;
+    return glm::dvec3(frames[static_cast<size_t>(foot)][3]);
   };
-  const double goal = pivotHeight() + lift;
-  liftFootStep(plan, pose, leg, foot, lift);
-  liftFootStep(plan, pose, leg, foot, goal - pivotHeight());
+  const glm::dvec3 goal = pivot() + displacement;
+  moveFootStep(plan, pose, leg, foot, displacement);
+  moveFootStep(plan, pose, leg, foot, goal - pivot());
 }
 
 }  // namespace
@@ -286,14 +287,17 @@ void FourierTargets::evaluate(double t, std::span<glm::dquat> rotations,
 const char* balanceGainName(int i) {
   static const char* const kNames[kBalanceGainCount] = {
       "cd_sagittal", "cv_sagittal",   "cd_coronal",    "cv_coronal",
-      "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift", "heading"};
+      "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift",
+      "heading",     "stance_sagittal", "stance_coronal", "stance_vertical"};
   return kNames[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
 double& balanceGain(BalanceGains& g, int i) {
   double* const fields[kBalanceGainCount] = {&g.cd_sagittal, &g.cv_sagittal,   &g.cd_coronal,
                                              &g.cv_coronal,  &g.torso,         &g.ankle_sagittal,
-                                             &g.ankle_coronal, &g.swing_lift,  &g.heading};
+                                             &g.ankle_coronal, &g.swing_lift,  &g.heading,
+                                             &g.stance_sagittal, &g.stance_coronal,
+                                             &g.stance_vertical};
   return *fields[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
@@ -462,7 +466,8 @@ void TrackingController::liftSwingFeet(double time) {
     const double into = std::fmod(std::fmod(time - cycle.liftoff_s, period) + period, period);
     if (swing <= 0.0 || into >= swing) continue;
     const double bump = std::pow(std::sin(std::numbers::pi * into / swing), 2.0);
-    liftFoot(*plan_, target_, legs_[f], feet_[f], settings_.balance.swing_lift * plan_->size_m * bump);
+    moveFoot(*plan_, target_, legs_[f], feet_[f],
+             glm::dvec3(0.0, settings_.balance.swing_lift * plan_->size_m * bump, 0.0));
   }
 }
 
@@ -571,6 +576,7 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
       glm::normalize(glm::slerp(target_.rotations[stance_hip], held, gains.torso));
 
   turnStanceAnkle(feet_[stance], v - v_ref, forward, side);
+  driveStanceLegs(pair, contacts, v - v_ref, heading_target);
   if (!swinging) return static_cast<int>(stance);
   // Swing hip: its target relative to the desired base, turned so the foot lands where it
   // catches the centre of mass: by how far the offset and velocity differ from the target's (the
@@ -608,6 +614,32 @@ void TrackingController::turnStanceAnkle(int foot_link, const glm::dvec3& veloci
                      glm::angleAxis(-gains.ankle_coronal * velocity_error.x, forward));
   target_.rotations[foot] = coordinateFor(link, wanted[static_cast<size_t>(link.parent)],
                                           glm::normalize(turn * wanted[foot]));
+}
+
+// The stance legs (Coros et al. 2010's virtual force, kinematically): every foot of the pair
+// that is down has its target moved, relative to the base, by the stance gains x the centre of
+// mass's velocity error (heading frame: x left, y up, z forward), at most a tenth of the rig's
+// size. The ground holds the foot, so the servos move the body the other way: a foot moved
+// forward holds a body that runs ahead of the target back, one moved up lowers a body that rises
+// faster than the target's.
+void TrackingController::driveStanceLegs(const LegPair& pair,
+                                         const std::vector<std::uint8_t>& contacts,
+                                         const glm::dvec3& velocity_error, double heading_target) {
+  const BalanceGains& gains = settings_.balance;
+  if (gains.stance_sagittal == 0.0 && gains.stance_coronal == 0.0 && gains.stance_vertical == 0.0)
+    return;
+  glm::dvec3 moved(gains.stance_coronal * velocity_error.x,
+                   gains.stance_vertical * velocity_error.y,
+                   gains.stance_sagittal * velocity_error.z);
+  const double most = 0.1 * plan_->size_m;
+  if (glm::length(moved) > most) moved *= most / glm::length(moved);
+  // The target pose faces the target's heading: the error's frame turned to it.
+  const glm::dvec3 world_moved = yaw(heading_target) * moved;
+  for (int side : pair.feet) {
+    const size_t f = static_cast<size_t>(side);
+    if (contacts[static_cast<size_t>(feet_[f])] == 0 || legs_[f].empty()) continue;
+    moveFoot(*plan_, target_, legs_[f], feet_[f], world_moved);
+  }
 }
 
 }  // namespace sinew::physics

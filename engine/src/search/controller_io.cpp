@@ -47,8 +47,8 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
 
 namespace {
 
-// The first five gains are required; the ankle gains, swing_lift and heading came later: a file
-// without them was made without them, and replays so (0).
+// The first five gains are required; the ankle gains, swing_lift, heading and the stance gains
+// came later: a file without them was made without them, and replays so (0).
 Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
   using namespace state_json;
   Result<const nlohmann::json*> b = field(json, "balance", name);
@@ -56,7 +56,8 @@ Status readBalance(const nlohmann::json& json, const std::string& name, Controll
   const std::string where = name + ": balance";
   unknownKeys(*b.value(),
               {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso", "ankle_sagittal",
-               "ankle_coronal", "swing_lift", "heading"},
+               "ankle_coronal", "swing_lift", "heading", "stance_sagittal", "stance_coronal",
+               "stance_vertical"},
               where, &c.warnings);
   for (int i = 0; i < physics::kBalanceGainCount; ++i) {
     const char* key = physics::balanceGainName(i);

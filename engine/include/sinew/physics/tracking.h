@@ -97,11 +97,20 @@ struct BalanceGains {
   // nothing steers a turned body back; the search tunes it for characters with two or more leg
   // pairs only (bipeds were worse with it: docs/physics.md).
   double heading = 0.0;
+  // Stance legs (every foot of a pair that is down): the foot's target moved, relative to the
+  // base, by gain x the centre of mass's velocity error (the body's less the target's; forward,
+  // to the side, up), so the servos move the body back towards the target's velocity while a
+  // foot is down: the kinematic form of Coros et al. 2010's stance-leg virtual force, and a
+  // yielding leg vertically. Seconds (metres per m/s); positive gains oppose the error; off (0)
+  // by default, genes of the search.
+  double stance_sagittal = 0.0;
+  double stance_coronal = 0.0;
+  double stance_vertical = 0.0;
 };
 
 // The gains by index, in the order files and the genome hold them.
-inline constexpr int kBalanceGainCount = 9;
-const char* balanceGainName(int i);  // "cd_sagittal", ..., "swing_lift", "heading"
+inline constexpr int kBalanceGainCount = 12;
+const char* balanceGainName(int i);  // "cd_sagittal", ..., "heading", "stance_vertical"
 double& balanceGain(BalanceGains& gains, int i);
 // The largest value gain i may take, and whether it is a share from 0 (torso, swing_lift,
 // heading) rather than signed.
@@ -177,6 +186,8 @@ class TrackingController {
                   const std::vector<glm::dquat>& target_world);
   void turnStanceAnkle(int foot_link, const glm::dvec3& velocity_error, const glm::dvec3& forward,
                        const glm::dvec3& side);
+  void driveStanceLegs(const LegPair& pair, const std::vector<std::uint8_t>& contacts,
+                       const glm::dvec3& velocity_error, double heading_target);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
 
   const BodyPlan* plan_ = nullptr;
