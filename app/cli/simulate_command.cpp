@@ -54,8 +54,11 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
                          {"time_s", f.time_s},
                          {"position_m", {f.position.x, f.position.y, f.position.z}}});
   nlohmann::json limited = nlohmann::json::array();
-  for (size_t li = 1; li < r.links.size(); ++li)
+  nlohmann::json tracking = nlohmann::json::array();
+  for (size_t li = 1; li < r.links.size(); ++li) {
     limited.push_back({{"link", toUtf8(r.links[li])}, {"share", r.torque_limited_share[li]}});
+    tracking.push_back({{"link", toUtf8(r.links[li])}, {"rad_rms", r.track_err_by_link_rad[li]}});
+  }
   return {
       {"rig", toUtf8(args.rig)},
       {"clip", toUtf8(args.clip.empty() ? args.rig : args.clip)},
@@ -70,6 +73,7 @@ nlohmann::json reportJson(const physics::SimulationReport& r, const SimulateArgs
       {"distance_m", r.distance_m},
       {"speed_m_s", r.speed_m_s},
       {"track_err_rad_rms", r.track_err_rad_rms},
+      {"track_err_by_link", tracking},
       {"energy_j", r.energy_j},
       {"torque_sq_per_kg", r.torque_sq_per_kg},
       {"min_uprightness", r.min_uprightness},
@@ -156,6 +160,7 @@ void printReport(const physics::SimulationReport& r) {
                 100.0 * r.contact_share[f]);
   std::printf("  %zu footfalls\n", r.footfalls.size());
   printTorqueLimited(r);
+  printTrackingByJoint(r, "the target");
 }
 
 // A CSV header cell: quoted when the name holds a comma, a quote or a line break.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -406,6 +407,36 @@ TEST(CliTest, SimulateReportsJsonAndWritesWhatTheCharacterDid) {
   EXPECT_NE(slope.err.find("slope_deg"), std::string::npos) << slope.err;
 }
 
+// Where the tracking error lies: simulate's JSON gives every joint's RMS, whose squares average
+// (over the joints that turn) to the whole run's, and the summary names the largest.
+TEST(CliTest, SimulateNamesTheJointsFurthestFromTheTarget) {
+  test::TempDir dir;
+  const auto json_path = dir / "run.json";
+  const test::CommandResult result = test::runSinew(
+      "simulate --rig " + walk() + " --seconds 1 --json " + test::quote(json_path));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json json = nlohmann::json::parse(test::readText(json_path));
+  double squares = 0.0, most = 0.0;
+  int turning = 0;
+  std::string furthest;
+  for (const nlohmann::json& joint : json["track_err_by_link"]) {
+    const double rad = joint["rad_rms"].get<double>();
+    if (rad <= 0.0) continue;  // a welded joint
+    squares += rad * rad;
+    ++turning;
+    if (rad > most) {
+      most = rad;
+      furthest = joint["link"].get<std::string>();
+    }
+  }
+  ASSERT_GT(turning, 10);
+  EXPECT_NEAR(std::sqrt(squares / turning), json["track_err_rad_rms"].get<double>(), 1e-9);
+  char expected[96];
+  std::snprintf(expected, sizeof(expected), "furthest from the target: %s %.1f", furthest.c_str(),
+                most * 180.0 / std::numbers::pi);
+  EXPECT_NE(result.out.find(expected), std::string::npos) << expected << "\n" << result.out;
+}
+
 // sinew simulate --trace: a CSV with one row per step, as many cells in every row as the header
 // names (a foot's five, a joint's two), finite numbers; too long a traced run is refused before
 // any work.
@@ -497,6 +528,10 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   std::snprintf(expected, sizeof(expected), "at the torque limit: %s %.0f%%", busiest.c_str(),
                 100.0 * most);
   EXPECT_NE(run.out.find(expected), std::string::npos) << expected << "\n" << run.out;
+  // And the joints furthest from the clip (the replay above measures against the evolved target,
+  // so only the line's presence is checked here; SimulateNamesTheJointsFurthestFromTheTarget
+  // checks its figures).
+  EXPECT_NE(run.out.find("furthest from the clip: "), std::string::npos) << run.out;
   // Resumed without a new budget: refused, saying why; with one, it continues at generation 3.
   const test::CommandResult spent =
       test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +

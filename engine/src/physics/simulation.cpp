@@ -190,19 +190,36 @@ Status deliverPushes(World& world, const std::vector<Push>& pushes,
 
 // Squared tracking error of `now` against `wanted` over the actuated links, summed into
 // `sum`; `count` counts the terms.
-void addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& wanted,
-                      double& sum, long long& count) {
+// Adds each joint's squared angle to its target to `link_sums` (links); returns how many joints
+// turn (ball or hinge).
+int addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& wanted,
+                     std::vector<double>& link_sums) {
+  int turning = 0;
   for (size_t li = 1; li < plan.links.size(); ++li) {
     const JointType type = plan.links[li].type;
     if (type == JointType::kBall)
-      sum += std::pow(glm::length(shortRotationVector(
-                          glm::normalize(glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
-                      2.0);
+      link_sums[li] += std::pow(glm::length(shortRotationVector(glm::normalize(
+                                    glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
+                                2.0);
     else if (type == JointType::kHinge)
-      sum +=
+      link_sums[li] +=
           std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
-    if (type == JointType::kBall || type == JointType::kHinge) ++count;
+    if (type == JointType::kBall || type == JointType::kHinge) ++turning;
   }
+  return turning;
+}
+
+// track_err_rad_rms and track_err_by_link_rad from the sums over `steps` steps.
+void finishTrackingError(const std::vector<double>& link_sums, long long steps, int turning,
+                         SimulationReport& report) {
+  report.track_err_by_link_rad.assign(link_sums.size(), 0.0);
+  if (steps <= 0 || turning <= 0) return;
+  double sum = 0.0;
+  for (size_t li = 0; li < link_sums.size(); ++li) {
+    sum += link_sums[li];
+    report.track_err_by_link_rad[li] = std::sqrt(link_sums[li] / static_cast<double>(steps));
+  }
+  report.track_err_rad_rms = std::sqrt(sum / static_cast<double>(steps * turning));
 }
 
 // The step's mechanical work and torque^2 / mass.
@@ -455,8 +472,9 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   const long long steps = std::llround(settings.seconds / world.dt());
   const double record_every = world.dt() > 0.0 ? 1.0 / (settings.record_fps * world.dt()) : 1.0;
   double next_record = 0.0;
-  double error_sum = 0.0;
-  long long error_count = 0;
+  std::vector<double> error_sums(plan.links.size(), 0.0);  // (links) squared angles to the target
+  long long error_steps = 0;
+  int turning = 0;  // joints that turn
   std::vector<char> pushed(settings.pushes.size(), 0);
   double pushed_ns = 0.0;       // magnitudes of the impulses delivered, N s
   glm::dvec3 last_com = start;  // of the last state that did not diverge
@@ -501,7 +519,8 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
           linkPoseFromSkeleton(plan, skeleton, reference_pose, recorder.reference_translations);
       wanted = &reference_links;
     }
-    addTrackingError(plan, world.jointPositions(), *wanted, error_sum, error_count);
+    turning = addTrackingError(plan, world.jointPositions(), *wanted, error_sums);
+    ++error_steps;
     meter.measure(world, controller, settings.trace, report);
 
     // Any link on the ground but a foot is a fall.
@@ -524,7 +543,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   const glm::dvec3 end = report.diverged ? last_com : world.centreOfMass();
   report.distance_m = glm::length(glm::dvec2(end.x - start.x, end.z - start.z));
   report.speed_m_s = report.seconds > 0.0 ? report.distance_m / report.seconds : 0.0;
-  report.track_err_rad_rms = error_count > 0 ? std::sqrt(error_sum / static_cast<double>(error_count)) : 0.0;
+  finishTrackingError(error_sums, error_steps, turning, report);
   for (double& share : report.contact_share) share /= std::max<long long>(1, step);
   for (double& share : report.torque_limited_share) share /= std::max<long long>(1, step);
   report.pushed_impulse_ns = world.pushedImpulse();

@@ -98,6 +98,10 @@ struct SimulationReport {
   double track_err_rad_rms = 0.0;  // RMS over steps and actuated joints of the angle between each
                                    // joint's rotation and the motion's target (before balance
                                    // feedback; or SimulationSettings::reference's), radians
+  // (links; 0 for the base and for welded joints) each joint's RMS of the same angle over the
+  // steps, radians: where the tracking error lies (the mean of their squares over the turning
+  // joints is track_err_rad_rms's square).
+  std::vector<double> track_err_by_link_rad;
   double energy_j = 0.0;           // mechanical work of the joint torques, integral of sum |tau w|
   double torque_sq_per_kg = 0.0;   // integral of sum tau^2 dt / mass, N^2 m^2 s / kg
   double min_uprightness = 1.0;    // lowest cosine between the pelvis's up (the direction the
