@@ -74,6 +74,7 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
         j["balance"]["ankle_sagittal"] = 0.25;
         j["balance"]["swing_lift"] = 0.03;
         j["balance"]["heading"] = 0.7;
+        j["balance"]["stance_vertical"] = -0.04;
       },
       dir);
   ASSERT_TRUE(same.ok()) << same.message();
@@ -81,10 +82,12 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   EXPECT_EQ(same.value().balance.ankle_coronal, physics::BalanceGains{}.ankle_coronal);
   EXPECT_EQ(same.value().balance.swing_lift, 0.03);
   EXPECT_EQ(same.value().balance.heading, 0.7);
+  EXPECT_EQ(same.value().balance.stance_vertical, -0.04);
   Result<ControllerFile> older = editedController(
       c,
       [](nlohmann::json& j) {
-        for (const char* key : {"ankle_sagittal", "ankle_coronal", "swing_lift", "heading"})
+        for (const char* key : {"ankle_sagittal", "ankle_coronal", "swing_lift", "heading",
+                                "stance_sagittal", "stance_coronal", "stance_vertical"})
           j["balance"].erase(key);
       },
       dir);
@@ -93,6 +96,7 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   EXPECT_EQ(older.value().balance.ankle_sagittal, 0.0);
   EXPECT_EQ(older.value().balance.swing_lift, 0.0);
   EXPECT_EQ(older.value().balance.heading, 0.0);
+  EXPECT_EQ(older.value().balance.stance_vertical, 0.0);
   EXPECT_EQ(older.value().balance.torso, physics::BalanceGains{}.torso);
   Result<ControllerFile> high = editedController(
       c, [](nlohmann::json& j) { j["balance"]["swing_lift"] = 0.5; }, dir);

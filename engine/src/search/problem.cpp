@@ -21,12 +21,13 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kAmplitudeFloor = 1e-4;  // radians: below it a geometric range collapses
 const char* const kAxes = "xyz";
 constexpr double kSwingLiftRange = 0.05;  // swing_lift searched in [0, this] (per rig size)
-constexpr int kHeadingGain = 8;           // physics::balanceGain's index of `heading`
+constexpr int kSwingLiftGain = 7;         // physics::balanceGain's index of `swing_lift`
+constexpr int kHeadingGain = 8;           // and of `heading`
 constexpr double kHeadingPrior = 1.0;
 
 // The search range of balance gain i.
 std::pair<double, double> gainRange(int i, double gain_range) {
-  if (i == 7) return {0.0, kSwingLiftRange};
+  if (i == kSwingLiftGain) return {0.0, kSwingLiftRange};
   if (physics::balanceGainIsShare(i)) return {0.0, physics::balanceGainLimit(i, gain_range)};
   return {-gain_range, gain_range};
 }
@@ -107,12 +108,13 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
     add(Kind::kOmega, -1, -1, -1, seed.omega0 * (1.0 - settings.omega_range),
         seed.omega0 * (1.0 + settings.omega_range), seed.omega0, "omega0");
   // The heading share only where two or more leg pairs balance (a quadruped); from 1, the best
-  // measured on the dog (docs/physics.md). A biped's genome keeps the eight gains it had.
+  // measured on the dog (docs/physics.md). A character with no leg pair (the hopper) has no
+  // balance feedback: of the gains only the swing lift acts on it.
   physics::BalanceGains defaults;
-  const bool steers = physics::findLegPairs(plan).size() >= 2;
-  if (steers) defaults.heading = kHeadingPrior;
+  const size_t pairs = physics::findLegPairs(plan).size();
+  if (pairs >= 2) defaults.heading = kHeadingPrior;
   for (int i = 0; i < physics::kBalanceGainCount; ++i) {
-    if (i == kHeadingGain && !steers) continue;
+    if ((i == kHeadingGain && pairs < 2) || (pairs == 0 && i != kSwingLiftGain)) continue;
     const auto [lo, hi] = gainRange(i, settings.gain_range);
     add(Kind::kGain, -1, -1, i, lo, hi, physics::balanceGain(defaults, i),
         std::string("balance.") + physics::balanceGainName(i));

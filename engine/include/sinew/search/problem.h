@@ -5,14 +5,15 @@
 // Genome (GenomeLayout). For every rotation channel of a joint that moves a body (a joint in some
 // link's chain, or the base's), in the seed target's channel order: the offset A, then (B_n, D_n)
 // for each kept harmonic; then omega_0; then the balance gains (physics::balanceGainName order;
-// `heading` only for characters with two or more leg pairs, from 1). Coordinate x in [0, 1] maps
+// `heading` only for characters with two or more leg pairs, from 1; a character with no leg pair,
+// which has no balance feedback, only `swing_lift`). Coordinate x in [0, 1] maps
 //   A     = A0 + (2x - 1) offset_range_rad
 //   B     = B0 * amplitude_factor^(2x - 1)              (x = 0.5: B0; never negative; a prior
 //           below 1e-4 rad gets the linear range [0, 1e-4 amplitude_factor] instead)
 //   D     = D0 + (2x - 1) phase_range_rad
 //   omega = omega0 * (1 + (2x - 1) omega_range)
-//   gains = lo + x (hi - lo)  (cd, cv and the ankle gains in [-gain_range, gain_range]; torso and
-//           heading in [0, 1]; swing_lift in [0, 0.05])
+//   gains = lo + x (hi - lo)  (cd, cv, the ankle and the stance gains in [-gain_range,
+//           gain_range]; torso and heading in [0, 1]; swing_lift in [0, 0.05])
 // so the seed point (the DFT prior) is x = 0.5 for the coefficients and the defaults' place for
 // the gains. No prior (`no_prior`): the same structure (channels, harmonic numbers) but generic
 // ranges that know nothing of the clip: base rotations at the rig's rest pose, A in +-1 rad,
@@ -41,7 +42,7 @@ struct GenomeSettings {
   double amplitude_factor = 2.0;   // B within [B0 / f, B0 f], > 1
   double phase_range_rad = 0.5;    // D within +-0.5 rad of the clip's, > 0
   double omega_range = 0.2;        // omega0 within +-20%, [0, 0.9]
-  double gain_range = 1.0;         // cd and cv within +-this, rad/m and rad/(m/s), > 0
+  double gain_range = 1.0;         // cd, cv, ankle and stance gains within +-this, > 0
   bool no_prior = false;           // generic ranges and a random start (the baseline)
 
   Status validate() const;  // the message names the offending field
