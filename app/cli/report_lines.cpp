@@ -2,18 +2,28 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <vector>
 
 namespace sinew::app {
 
-void printTorqueLimited(const physics::SimulationReport& r) {
+namespace {
+
+// The links (from 1) whose value is at least `least`, the largest first.
+std::vector<size_t> largestFirst(const std::vector<double>& per_link, double least) {
   std::vector<size_t> order;
-  for (size_t li = 1; li < r.torque_limited_share.size(); ++li)
-    if (r.torque_limited_share[li] >= 0.05) order.push_back(li);
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return r.torque_limited_share[a] > r.torque_limited_share[b];
-  });
+  for (size_t li = 1; li < per_link.size(); ++li)
+    if (per_link[li] >= least) order.push_back(li);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return per_link[a] > per_link[b]; });
+  return order;
+}
+
+}  // namespace
+
+void printTorqueLimited(const physics::SimulationReport& r) {
+  const std::vector<size_t> order = largestFirst(r.torque_limited_share, 0.05);
   if (order.empty()) return;
   std::printf("  at the torque limit:");
   for (size_t k = 0; k < order.size() && k < 4; ++k)
@@ -23,12 +33,7 @@ void printTorqueLimited(const physics::SimulationReport& r) {
 }
 
 void printTrackingByJoint(const physics::SimulationReport& r, const char* target) {
-  std::vector<size_t> order;
-  for (size_t li = 1; li < r.track_err_by_link_rad.size(); ++li)
-    if (r.track_err_by_link_rad[li] > 0.0) order.push_back(li);
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return r.track_err_by_link_rad[a] > r.track_err_by_link_rad[b];
-  });
+  const std::vector<size_t> order = largestFirst(r.track_err_by_link_rad, std::numeric_limits<double>::min());
   if (order.empty()) return;
   std::printf("  furthest from %s:", target);
   for (size_t k = 0; k < order.size() && k < 3; ++k)

@@ -10,7 +10,7 @@ namespace sinew::app {
 // nothing when no joint is. Why a run fell, for an artist: the joints that could give no more.
 void printTorqueLimited(const physics::SimulationReport& report);
 
-// "  furthest from the target: UpperArm_L 31.2, LowerArm_L 22.0, Chest 12.5 deg RMS": the three
+// "  furthest from the clip: Foot_R 8.4, UpperLeg_R 8.1, LowerLeg_R 7.9 deg RMS": the three
 // joints with the largest tracking error (SimulationReport::track_err_by_link_rad), so an artist
 // sees where the motion's style went. `target` names what it was measured against ("the clip",
 // "the target"). Prints nothing for a run that tracked nothing.

@@ -188,13 +188,13 @@ Status deliverPushes(World& world, const std::vector<Push>& pushes,
   return {};
 }
 
-// Squared tracking error of `now` against `wanted` over the actuated links, summed into
-// `sum`; `count` counts the terms.
-// Adds each joint's squared angle to its target to `link_sums` (links); returns how many joints
-// turn (ball or hinge).
-int addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& wanted,
-                     std::vector<double>& link_sums) {
-  int turning = 0;
+bool turns(const Link& link) {
+  return link.type == JointType::kBall || link.type == JointType::kHinge;
+}
+
+// Adds each joint's squared angle to its target in `wanted` to `link_sums` (links).
+void addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& wanted,
+                      std::vector<double>& link_sums) {
   for (size_t li = 1; li < plan.links.size(); ++li) {
     const JointType type = plan.links[li].type;
     if (type == JointType::kBall)
@@ -204,15 +204,15 @@ int addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& 
     else if (type == JointType::kHinge)
       link_sums[li] +=
           std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
-    if (type == JointType::kBall || type == JointType::kHinge) ++turning;
   }
-  return turning;
 }
 
-// track_err_rad_rms and track_err_by_link_rad from the sums over `steps` steps.
-void finishTrackingError(const std::vector<double>& link_sums, long long steps, int turning,
-                         SimulationReport& report) {
+// track_err_rad_rms (over the joints that turn) and track_err_by_link_rad from the sums over
+// `steps` steps.
+void finishTrackingError(const BodyPlan& plan, const std::vector<double>& link_sums,
+                         long long steps, SimulationReport& report) {
   report.track_err_by_link_rad.assign(link_sums.size(), 0.0);
+  const auto turning = std::count_if(plan.links.begin() + 1, plan.links.end(), turns);
   if (steps <= 0 || turning <= 0) return;
   double sum = 0.0;
   for (size_t li = 0; li < link_sums.size(); ++li) {
@@ -474,7 +474,6 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   double next_record = 0.0;
   std::vector<double> error_sums(plan.links.size(), 0.0);  // (links) squared angles to the target
   long long error_steps = 0;
-  int turning = 0;  // joints that turn
   std::vector<char> pushed(settings.pushes.size(), 0);
   double pushed_ns = 0.0;       // magnitudes of the impulses delivered, N s
   glm::dvec3 last_com = start;  // of the last state that did not diverge
@@ -519,7 +518,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
           linkPoseFromSkeleton(plan, skeleton, reference_pose, recorder.reference_translations);
       wanted = &reference_links;
     }
-    turning = addTrackingError(plan, world.jointPositions(), *wanted, error_sums);
+    addTrackingError(plan, world.jointPositions(), *wanted, error_sums);
     ++error_steps;
     meter.measure(world, controller, settings.trace, report);
 
@@ -543,7 +542,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   const glm::dvec3 end = report.diverged ? last_com : world.centreOfMass();
   report.distance_m = glm::length(glm::dvec2(end.x - start.x, end.z - start.z));
   report.speed_m_s = report.seconds > 0.0 ? report.distance_m / report.seconds : 0.0;
-  finishTrackingError(error_sums, error_steps, turning, report);
+  finishTrackingError(plan, error_sums, error_steps, report);
   for (double& share : report.contact_share) share /= std::max<long long>(1, step);
   for (double& share : report.torque_limited_share) share /= std::max<long long>(1, step);
   report.pushed_impulse_ns = world.pushedImpulse();
