@@ -41,9 +41,10 @@ struct Character {
   spectral::TargetMotion target;
 };
 
-inline Character loadCharacter(const std::string& asset_name) {
+// The same from any motion file.
+inline Character loadCharacterFrom(const std::filesystem::path& path) {
   Character c;
-  c.asset = loadAsset(sinew::test::sourceDir() / "assets" / asset_name);
+  c.asset = loadAsset(path);
   if (c.asset.clips.empty()) return c;
   Result<BodyPlan> plan = buildBodyPlan(c.asset.skeleton, &c.asset.clips[0]);
   EXPECT_TRUE(plan.ok()) << plan.message();
@@ -51,8 +52,12 @@ inline Character loadCharacter(const std::string& asset_name) {
   EXPECT_TRUE(spectrum.ok()) << spectrum.message();
   if (!plan.ok() || !spectrum.ok()) return c;
   c.plan = std::move(plan).value();
-  c.target = spectral::targetFromSpectrum(spectrum.value(), {}, asset_name);
+  c.target = spectral::targetFromSpectrum(spectrum.value(), {}, path.filename().string());
   return c;
+}
+
+inline Character loadCharacter(const std::string& asset_name) {
+  return loadCharacterFrom(sinew::test::sourceDir() / "assets" / asset_name);
 }
 
 struct HoldResult {

@@ -628,6 +628,58 @@ TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {
   }
 }
 
+// Each pair's forward (what its heading, its sagittal and coronal frames are measured about) over
+// the target's whole cycle: its largest tilt out of the horizontal and its largest angle from the
+// way the motion travels, in degrees. Expects the tilt within 30 degrees, and the turn too where
+// `straight` (a clip that turns, as CMU 131's dance does, turns its pelvis away from its travel).
+void expectForwardAlongTheTravel(const test_util::Character& c, const std::string& name,
+                                 bool straight) {
+  ASSERT_FALSE(c.plan.links.empty()) << name;
+  const MotionState state = targetState(c.plan, c.asset.skeleton, c.target, 0.0);
+  std::unique_ptr<World> world = World::create(c.plan, state.pose).value();
+  auto made = TrackingController::create(*world, c.asset.skeleton, c.target, state.pose);
+  ASSERT_TRUE(made.ok()) << made.message();
+  const double period = c.target.period();
+  const glm::dvec3 travel = poseKinematics(c.plan, targetState(c.plan, c.asset.skeleton, c.target,
+                                                               period).pose).com -
+                            poseKinematics(c.plan, state.pose).com;
+  const glm::dvec3 along = glm::normalize(glm::dvec3(travel.x, 0.0, travel.z));
+  double tilt = 0.0, off = 0.0;
+  for (int k = 0; k < 16; ++k) {
+    const LinkPose pose = targetState(c.plan, c.asset.skeleton, c.target, period * k / 16.0).pose;
+    const std::vector<glm::dquat> world_rotations = linkWorldRotations(c.plan, pose);
+    for (const LegPair& pair : made.value()->legPairs()) {
+      const glm::dvec3 f = world_rotations[static_cast<size_t>(pair.base)] * pair.forward_local;
+      tilt = std::max(tilt, std::asin(std::clamp(std::abs(f.y), 0.0, 1.0)));
+      off = std::max(off, std::acos(std::clamp(
+                              glm::dot(glm::normalize(glm::dvec3(f.x, 0.0, f.z)), along), -1.0, 1.0)));
+    }
+  }
+  std::printf("%-40s %zu pairs, travel %.2f m a period: forward tilts up to %.1f deg, turns up to "
+              "%.1f deg from the travel\n",
+              name.c_str(), made.value()->legPairs().size(), glm::length(travel),
+              glm::degrees(tilt), glm::degrees(off));
+  EXPECT_LT(glm::degrees(tilt), 30.0) << name;
+  if (straight) EXPECT_LT(glm::degrees(off), 30.0) << name;
+}
+
+// The forward is taken from the motion (its travel, in its first pose), not from the rest pose:
+// the MANN dog's rest pose lies on its side, and a forward taken there pointed straight down once
+// the motion's attitude was on (tilted 78-86 degrees), so its headings swung by up to 1.7 rad
+// within 0.1 s of a straight walk.
+TEST(TrackingController, EveryPairsForwardStaysAlongTheBundledCreaturesTravel) {
+  for (const char* name : {"biped_walk.bvh", "quadruped_trot.bvh", "stepper_step.bvh"})
+    expectForwardAlongTheTravel(test_util::loadCharacter(name), name, true);
+}
+
+TEST(TrackingController, EveryPairsForwardStaysAlongTheRealCapturesTravel) {
+  SINEW_REQUIRE_SHARED_DATA();
+  for (const std::filesystem::path& path : sinew::test::sharedFiles("bvh", ".bvh")) {
+    const std::string name = path.filename().string();
+    expectForwardAlongTheTravel(test_util::loadCharacterFrom(path), name, false);
+  }
+}
+
 // The bundled trot with its leg pairs balanced sideways (coronal gains only) stays up the 10 s it
 // falls within without feedback: the pairs' feedback, not the tracking alone, holds it.
 TEST(Simulation, LegPairFeedbackKeepsTheQuadrupedTrotUp) {

@@ -427,18 +427,7 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
 
   c->pairs_ = findLegPairs(plan);
   c->balance_ = !c->pairs_.empty();
-  // Forward: the feet's soles point forward (their boxes' +Z); in each pair's base link frame.
-  const std::vector<glm::dquat> standing_world = linkWorldRotations(plan, standing);
-  glm::dvec3 forward(0.0);
-  for (int foot : c->feet_) {
-    const Link& link = plan.links[static_cast<size_t>(foot)];
-    forward += standing_world[static_cast<size_t>(foot)] * (link.shape.rotation * glm::dvec3(0, 0, 1));
-  }
-  forward.y = 0.0;
-  if (glm::length(forward) < 1e-9) forward = glm::dvec3(0.0, 0.0, 1.0);
-  for (LegPair& pair : c->pairs_)
-    pair.forward_local =
-        glm::inverse(standing_world[static_cast<size_t>(pair.base)]) * glm::normalize(forward);
+  c->setForward(target);
   c->target_ = standing;
   c->motion_ = standing;
   c->cycles_ = targetFootCycles(plan, skeleton, target, c->feet_);
@@ -455,6 +444,34 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
     c->legs_.push_back(std::move(leg));
   }
   return c;
+}
+
+// Forward, in each pair's base frame: the way the motion travels over a period, where it travels
+// (at least 5% of the rig's size), else the way its feet's soles point (their boxes' +Z), both
+// in the motion's own first pose. Not the standing pose: a rig whose rest pose lies on its side
+// (the MANN dog's) would hold a forward that turns vertical once the motion's attitude is on.
+void TrackingController::setForward(const spectral::TargetMotion& target) {
+  const BodyPlan& plan = *plan_;
+  const double period = target.period();
+  fourier_->evaluate(0.0, rotations_, translations_);
+  const LinkPose first = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
+  fourier_->evaluate(period, rotations_, translations_);
+  const LinkPose later = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
+  glm::dvec3 forward = poseKinematics(plan, later).com - poseKinematics(plan, first).com;
+  forward.y = 0.0;
+  const std::vector<glm::dquat> first_world = linkWorldRotations(plan, first);
+  if (!(period > 0.0) || glm::length(forward) < 0.05 * plan.size_m) {
+    forward = glm::dvec3(0.0);
+    for (int foot : feet_) {
+      const Link& link = plan.links[static_cast<size_t>(foot)];
+      forward += first_world[static_cast<size_t>(foot)] * (link.shape.rotation * glm::dvec3(0, 0, 1));
+    }
+    forward.y = 0.0;
+  }
+  if (glm::length(forward) < 1e-9) forward = glm::dvec3(0.0, 0.0, 1.0);
+  for (LegPair& pair : pairs_)
+    pair.forward_local =
+        glm::inverse(first_world[static_cast<size_t>(pair.base)]) * glm::normalize(forward);
 }
 
 void TrackingController::liftSwingFeet(double time) {

@@ -189,6 +189,7 @@ class TrackingController {
   void driveStanceLegs(const LegPair& pair, const std::vector<std::uint8_t>& contacts,
                        const glm::dvec3& velocity_error, double heading_target);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
+  void setForward(const spectral::TargetMotion& target);  // every pair's forward_local
 
   const BodyPlan* plan_ = nullptr;
   const motion::Skeleton* skeleton_ = nullptr;
