@@ -188,6 +188,55 @@ TEST(TrackingController, StanceGainsMoveThePlantedFootAgainstTheVelocityError) {
   EXPECT_GT(checked, 0) << "no foot came down in 40 steps";
 }
 
+// stance_yaw turns the planted feet's targets about the vertical through the target's centre of
+// mass against the heading error: a trotter started turned 0.2 rad to the left of its target
+// (error -0.2 rad) has each planted foot's target moved by 0.2 x gain x (up x its arm), the front
+// feet to the left, the hind feet to the right, so the ground turns the body back to the right.
+TEST(TrackingController, StanceYawTurnsThePlantedFeetAgainstTheHeadingError) {
+  const test_util::Character trot = test_util::loadCharacter("quadruped_trot.bvh");
+  ASSERT_FALSE(trot.plan.links.empty());
+  MotionState state = targetState(trot.plan, trot.asset.skeleton, trot.target, 0.0);
+  const double turned = 0.2;
+  state.pose.base_rotation =
+      glm::angleAxis(turned, glm::dvec3(0.0, 1.0, 0.0)) * state.pose.base_rotation;
+  std::unique_ptr<World> world = World::create(trot.plan, state.pose).value();
+  TrackingSettings settings;
+  settings.ramp_s = 0.0;
+  settings.balance.torso = 0.0;  // only the stance turn moves a stance foot's target
+  settings.balance.swing_lift = 0.0;
+  settings.balance.stance_yaw = 0.3;
+  auto made = TrackingController::create(*world, trot.asset.skeleton, trot.target, state.pose,
+                                         settings);
+  ASSERT_TRUE(made.ok()) << made.message();
+  TrackingController& controller = *made.value();
+  const std::vector<int> feet = footLinks(trot.plan);
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  bool front = false, hind = false;  // a foot ahead of the centre of mass checked, one behind
+  for (int k = 0; k < 60 && !(front && hind); ++k) {
+    controller.update(*world);
+    const PoseKinematics reference = poseKinematics(trot.plan, controller.motionTarget());
+    for (int foot : feet) {
+      const size_t f = static_cast<size_t>(foot);
+      if (world->linkContacts()[f] == 0) continue;
+      const glm::dvec3 moved = linkOrigins(trot.plan, controller.target())[f] -
+                               linkOrigins(trot.plan, controller.motionTarget())[f];
+      const glm::dvec3 arm = reference.pivots[f] - reference.com;
+      const glm::dvec3 asked = 0.3 * turned * glm::dvec3(arm.z, 0.0, -arm.x);
+      std::printf("step %d, foot %zu: arm %.1f cm, moved %.2f cm (asked %.2f cm), %.0f%% along it\n",
+                  k, f, 100.0 * glm::length(glm::dvec2(arm.x, arm.z)), 100.0 * glm::length(moved),
+                  100.0 * glm::length(asked),
+                  100.0 * glm::dot(moved, asked) / glm::dot(asked, asked));
+      EXPECT_GT(glm::length(asked), 0.01);
+      EXPECT_LT(glm::length(moved - asked), 0.15 * glm::length(asked));
+      const double ahead = glm::dot(arm, state.base_linear);  // the trot travels forward
+      front = front || ahead > 0.0;
+      hind = hind || ahead < 0.0;
+    }
+    world->step(zero);
+  }
+  EXPECT_TRUE(front && hind) << "no front and hind foot down in 60 steps";
+}
+
 // The motion the feedback compares the body with is the target's whole pose, its travel
 // included: the reference centre of mass moves at the clip's speed (it stood still before, so
 // the velocity gains saw the whole walking speed as an error).
@@ -660,7 +709,9 @@ void expectForwardAlongTheTravel(const test_util::Character& c, const std::strin
               name.c_str(), made.value()->legPairs().size(), glm::length(travel),
               glm::degrees(tilt), glm::degrees(off));
   EXPECT_LT(glm::degrees(tilt), 30.0) << name;
-  if (straight) EXPECT_LT(glm::degrees(off), 30.0) << name;
+  if (straight) {
+    EXPECT_LT(glm::degrees(off), 30.0) << name;
+  }
 }
 
 // The forward is taken from the motion (its travel, in its first pose), not from the rest pose:

@@ -63,8 +63,8 @@ TEST(SearchBadInput, ControllerFilesGiveOneLineNamingTheField) {
 }
 
 // The gains added after version 1's first files (ankle_sagittal, ankle_coronal, swing_lift,
-// heading): saved and read back; a file without them was made without them and replays with them
-// off; a lift beyond its range is refused naming the field.
+// heading, the stance gains): saved and read back; a file without them was made without them and
+// replays with them off; a lift beyond its range is refused naming the field.
 TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   const physics::test_util::Character c = biped();
   test::TempDir dir;
@@ -75,6 +75,7 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
         j["balance"]["swing_lift"] = 0.03;
         j["balance"]["heading"] = 0.7;
         j["balance"]["stance_vertical"] = -0.04;
+        j["balance"]["stance_yaw"] = 0.6;
       },
       dir);
   ASSERT_TRUE(same.ok()) << same.message();
@@ -83,11 +84,13 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   EXPECT_EQ(same.value().balance.swing_lift, 0.03);
   EXPECT_EQ(same.value().balance.heading, 0.7);
   EXPECT_EQ(same.value().balance.stance_vertical, -0.04);
+  EXPECT_EQ(same.value().balance.stance_yaw, 0.6);
   Result<ControllerFile> older = editedController(
       c,
       [](nlohmann::json& j) {
         for (const char* key : {"ankle_sagittal", "ankle_coronal", "swing_lift", "heading",
-                                "stance_sagittal", "stance_coronal", "stance_vertical"})
+                                "stance_sagittal", "stance_coronal", "stance_vertical",
+                                "stance_yaw"})
           j["balance"].erase(key);
       },
       dir);
@@ -97,6 +100,7 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   EXPECT_EQ(older.value().balance.swing_lift, 0.0);
   EXPECT_EQ(older.value().balance.heading, 0.0);
   EXPECT_EQ(older.value().balance.stance_vertical, 0.0);
+  EXPECT_EQ(older.value().balance.stance_yaw, 0.0);
   EXPECT_EQ(older.value().balance.torso, physics::BalanceGains{}.torso);
   Result<ControllerFile> high = editedController(
       c, [](nlohmann::json& j) { j["balance"]["swing_lift"] = 0.5; }, dir);

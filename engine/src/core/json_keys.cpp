@@ -4,7 +4,7 @@
 
 namespace sinew {
 
-void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*> known,
+void unknownKeys(const nlohmann::json& object, const std::vector<const char*>& known,
                  const std::string& where, std::vector<std::string>* warnings) {
   if (warnings == nullptr || !object.is_object()) return;
   for (const auto& item : object.items()) {

@@ -288,7 +288,8 @@ const char* balanceGainName(int i) {
   static const char* const kNames[kBalanceGainCount] = {
       "cd_sagittal", "cv_sagittal",   "cd_coronal",    "cv_coronal",
       "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift",
-      "heading",     "stance_sagittal", "stance_coronal", "stance_vertical"};
+      "heading",     "stance_sagittal", "stance_coronal", "stance_vertical",
+      "stance_yaw"};
   return kNames[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
@@ -297,7 +298,7 @@ double& balanceGain(BalanceGains& g, int i) {
                                              &g.cv_coronal,  &g.torso,         &g.ankle_sagittal,
                                              &g.ankle_coronal, &g.swing_lift,  &g.heading,
                                              &g.stance_sagittal, &g.stance_coronal,
-                                             &g.stance_vertical};
+                                             &g.stance_vertical, &g.stance_yaw};
   return *fields[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
@@ -566,9 +567,9 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
   const glm::dquat base_target = target_world[static_cast<size_t>(pair.base)];
   const double heading_now = headingOf(base_now, pair.forward_local);
   const double heading_target = headingOf(base_target, pair.forward_local);
-  const double heading_held =
-      heading_now + gains.heading * std::remainder(heading_target - heading_now,
-                                                   2.0 * std::numbers::pi);
+  const double heading_error =
+      std::remainder(heading_target - heading_now, 2.0 * std::numbers::pi);
+  const double heading_held = heading_now + gains.heading * heading_error;
   const glm::dquat base_wanted =
       glm::normalize(yaw(heading_held) * glm::inverse(yaw(heading_target)) * base_target);
 
@@ -593,7 +594,7 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
       glm::normalize(glm::slerp(target_.rotations[stance_hip], held, gains.torso));
 
   turnStanceAnkle(feet_[stance], v - v_ref, forward, side);
-  driveStanceLegs(pair, contacts, v - v_ref, heading_target);
+  driveStanceLegs(pair, contacts, v - v_ref, heading_target, heading_error);
   if (!swinging) return static_cast<int>(stance);
   // Swing hip: its target relative to the desired base, turned so the foot lands where it
   // catches the centre of mass: by how far the offset and velocity differ from the target's (the
@@ -635,27 +636,33 @@ void TrackingController::turnStanceAnkle(int foot_link, const glm::dvec3& veloci
 
 // The stance legs (Coros et al. 2010's virtual force, kinematically): every foot of the pair
 // that is down has its target moved, relative to the base, by the stance gains x the centre of
-// mass's velocity error (heading frame: x left, y up, z forward), at most a tenth of the rig's
-// size. The ground holds the foot, so the servos move the body the other way: a foot moved
-// forward holds a body that runs ahead of the target back, one moved up lowers a body that rises
-// faster than the target's.
+// mass's velocity error (heading frame: x left, y up, z forward), plus a turn about the vertical
+// through the target's centre of mass by -stance_yaw x the heading error, at most a tenth of the
+// rig's size in all. The ground holds the foot, so the servos move the body the other way: a foot
+// moved forward holds a body that runs ahead of the target back, one moved up lowers a body that
+// rises faster than the target's, front feet moved right and hind feet left turn it left.
 void TrackingController::driveStanceLegs(const LegPair& pair,
                                          const std::vector<std::uint8_t>& contacts,
-                                         const glm::dvec3& velocity_error, double heading_target) {
+                                         const glm::dvec3& velocity_error, double heading_target,
+                                         double heading_error) {
   const BalanceGains& gains = settings_.balance;
-  if (gains.stance_sagittal == 0.0 && gains.stance_coronal == 0.0 && gains.stance_vertical == 0.0)
+  if (gains.stance_sagittal == 0.0 && gains.stance_coronal == 0.0 &&
+      gains.stance_vertical == 0.0 && gains.stance_yaw == 0.0)
     return;
-  glm::dvec3 moved(gains.stance_coronal * velocity_error.x,
-                   gains.stance_vertical * velocity_error.y,
-                   gains.stance_sagittal * velocity_error.z);
+  const glm::dvec3 pushed(gains.stance_coronal * velocity_error.x,
+                          gains.stance_vertical * velocity_error.y,
+                          gains.stance_sagittal * velocity_error.z);
+  const double turn = -gains.stance_yaw * heading_error;
   const double most = 0.1 * plan_->size_m;
-  if (glm::length(moved) > most) moved *= most / glm::length(moved);
-  // The target pose faces the target's heading: the error's frame turned to it.
-  const glm::dvec3 world_moved = yaw(heading_target) * moved;
+  // The target pose faces the target's heading: the moves are made in its frame, then turned.
+  const glm::dquat frame = yaw(heading_target);
   for (int side : pair.feet) {
     const size_t f = static_cast<size_t>(side);
     if (contacts[static_cast<size_t>(feet_[f])] == 0 || legs_[f].empty()) continue;
-    moveFoot(*plan_, target_, legs_[f], feet_[f], world_moved);
+    const glm::dvec3 arm = glm::inverse(frame) * (reference_ankles_[f] - reference_com_);
+    glm::dvec3 moved = pushed + turn * glm::dvec3(arm.z, 0.0, -arm.x);  // turn x (up x arm)
+    if (glm::length(moved) > most) moved *= most / glm::length(moved);
+    moveFoot(*plan_, target_, legs_[f], feet_[f], frame * moved);
   }
 }
 

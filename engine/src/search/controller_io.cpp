@@ -48,17 +48,15 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
 namespace {
 
 // The first five gains are required; the ankle gains, swing_lift, heading and the stance gains
-// came later: a file without them was made without them, and replays so (0).
+// (stance_yaw last) came later: a file without them was made without them, and replays so (0).
 Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
   using namespace state_json;
   Result<const nlohmann::json*> b = field(json, "balance", name);
   if (!b.ok()) return b.status();
   const std::string where = name + ": balance";
-  unknownKeys(*b.value(),
-              {"cd_sagittal", "cv_sagittal", "cd_coronal", "cv_coronal", "torso", "ankle_sagittal",
-               "ankle_coronal", "swing_lift", "heading", "stance_sagittal", "stance_coronal",
-               "stance_vertical"},
-              where, &c.warnings);
+  std::vector<const char*> known;
+  for (int i = 0; i < physics::kBalanceGainCount; ++i) known.push_back(physics::balanceGainName(i));
+  unknownKeys(*b.value(), known, where, &c.warnings);
   for (int i = 0; i < physics::kBalanceGainCount; ++i) {
     const char* key = physics::balanceGainName(i);
     double& gain = physics::balanceGain(c.balance, i);

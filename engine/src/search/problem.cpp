@@ -23,6 +23,7 @@ const char* const kAxes = "xyz";
 constexpr double kSwingLiftRange = 0.05;  // swing_lift searched in [0, this] (per rig size)
 constexpr int kSwingLiftGain = 7;         // physics::balanceGain's index of `swing_lift`
 constexpr int kHeadingGain = 8;           // and of `heading`
+constexpr int kStanceYawGain = 12;        // and of `stance_yaw`
 constexpr double kHeadingPrior = 1.0;
 
 // The search range of balance gain i.
@@ -107,14 +108,16 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
   else
     add(Kind::kOmega, -1, -1, -1, seed.omega0 * (1.0 - settings.omega_range),
         seed.omega0 * (1.0 + settings.omega_range), seed.omega0, "omega0");
-  // The heading share only where two or more leg pairs balance (a quadruped); from 1, the best
-  // measured on the dog (docs/physics.md). A character with no leg pair (the hopper) has no
+  // The heading share and the stance legs' turn only where two or more leg pairs balance (a
+  // quadruped: feet ahead of and behind the centre of mass); the share from 1, the best measured
+  // on the dog (docs/physics.md). A character with no leg pair (the hopper) has no
   // balance feedback: of the gains only the swing lift acts on it.
   physics::BalanceGains defaults;
   const size_t pairs = physics::findLegPairs(plan).size();
   if (pairs >= 2) defaults.heading = kHeadingPrior;
   for (int i = 0; i < physics::kBalanceGainCount; ++i) {
-    if ((i == kHeadingGain && pairs < 2) || (pairs == 0 && i != kSwingLiftGain)) continue;
+    const bool turns = i == kHeadingGain || i == kStanceYawGain;
+    if ((turns && pairs < 2) || (pairs == 0 && i != kSwingLiftGain)) continue;
     const auto [lo, hi] = gainRange(i, settings.gain_range);
     add(Kind::kGain, -1, -1, i, lo, hi, physics::balanceGain(defaults, i),
         std::string("balance.") + physics::balanceGainName(i));

@@ -2,7 +2,6 @@
 // warning naming the file and the field, not an error, so a newer file still reads.
 #pragma once
 
-#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -12,7 +11,7 @@ namespace sinew {
 
 // For every key of `object` (when it is an object) not in `known`, appends
 // "<where>: unknown key '<key>' (ignored)" to `warnings` (nothing when warnings is null).
-void unknownKeys(const nlohmann::json& object, std::initializer_list<const char*> known,
+void unknownKeys(const nlohmann::json& object, const std::vector<const char*>& known,
                  const std::string& where, std::vector<std::string>* warnings);
 
 }  // namespace sinew

@@ -106,11 +106,18 @@ struct BalanceGains {
   double stance_sagittal = 0.0;
   double stance_coronal = 0.0;
   double stance_vertical = 0.0;
+  // Stance legs against the heading error (the target's heading less the base's): every planted
+  // foot's target turned about the vertical through the target's centre of mass by -gain x the
+  // error, so the ground, holding the feet, turns the body towards the target's heading. Where
+  // feet stand ahead of and behind the centre of mass (a quadruped's two pairs) this is the yaw
+  // moment a body with small feet has no other way to make. Radians per radian; the search tunes
+  // it for characters with two or more leg pairs only, like `heading`.
+  double stance_yaw = 0.0;
 };
 
 // The gains by index, in the order files and the genome hold them.
-inline constexpr int kBalanceGainCount = 12;
-const char* balanceGainName(int i);  // "cd_sagittal", ..., "heading", "stance_vertical"
+inline constexpr int kBalanceGainCount = 13;
+const char* balanceGainName(int i);  // "cd_sagittal", ..., "heading", ..., "stance_yaw"
 double& balanceGain(BalanceGains& gains, int i);
 // The largest value gain i may take, and whether it is a share from 0 (torso, swing_lift,
 // heading) rather than signed.
@@ -187,7 +194,8 @@ class TrackingController {
   void turnStanceAnkle(int foot_link, const glm::dvec3& velocity_error, const glm::dvec3& forward,
                        const glm::dvec3& side);
   void driveStanceLegs(const LegPair& pair, const std::vector<std::uint8_t>& contacts,
-                       const glm::dvec3& velocity_error, double heading_target);
+                       const glm::dvec3& velocity_error, double heading_target,
+                       double heading_error);
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
   void setForward(const spectral::TargetMotion& target);  // every pair's forward_local
 
