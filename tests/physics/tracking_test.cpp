@@ -677,6 +677,84 @@ TEST(TrackingController, FindsTheLegPairsOfABipedAndAQuadruped) {
   }
 }
 
+// A foot no other foot pairs with balances alone: the hopper's one leg, about the pelvis it hangs
+// from, its hip the thigh (the first ball joint of the leg).
+TEST(TrackingController, AHoppersOneLegBalancesAlone) {
+  const test_util::Character hopper = test_util::loadCharacter("hopper_hop.bvh");
+  ASSERT_FALSE(hopper.plan.links.empty());
+  const std::vector<LegPair> pairs = findLegPairs(hopper.plan);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_TRUE(pairs[0].alone());
+  EXPECT_EQ(hopper.plan.links[static_cast<size_t>(pairs[0].hips[0])].name, "UpLeg");
+  EXPECT_EQ(pairs[0].base, 0);
+  for (const char* name : {"biped_walk.bvh", "quadruped_trot.bvh", "stepper_step.bvh"})
+    for (const LegPair& pair : findLegPairs(test_util::loadCharacter(name).plan))
+      EXPECT_FALSE(pair.alone()) << name;
+}
+
+// In the air, a leg alone is placed to catch the body (Raibert's hopper): a hopper dropped from
+// 0.4 m above its target while moving 1 m/s faster has its hip's target turned forward by
+// cv_sagittal x the velocity error, so the foot lands ahead and brakes the body.
+TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
+  const test_util::Character hopper = test_util::loadCharacter("hopper_hop.bvh");
+  ASSERT_FALSE(hopper.plan.links.empty());
+  MotionState state = targetState(hopper.plan, hopper.asset.skeleton, hopper.target, 0.0);
+  state.pose.base_position.y += 0.4;
+  std::unique_ptr<World> world = World::create(hopper.plan, state.pose).value();
+  glm::dvec3 travel = state.base_linear;
+  travel.y = 0.0;
+  travel = glm::normalize(travel);
+  ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
+                                   state.joint_velocities).ok());
+  TrackingSettings settings;
+  settings.ramp_s = 0.0;
+  settings.balance.swing_lift = 0.0;
+  settings.balance.cv_sagittal = 0.2;
+  auto made = TrackingController::create(*world, hopper.asset.skeleton, hopper.target, state.pose,
+                                         settings);
+  ASSERT_TRUE(made.ok()) << made.message();
+  TrackingController& controller = *made.value();
+  const int hip = controller.legPairs()[0].hips[0];
+  const int foot = controller.feet()[0];
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  glm::dvec3 previous_com(0.0);
+  int checked = 0;
+  for (int k = 0; k < 6; ++k) {
+    controller.update(*world);
+    const glm::dvec3 com = poseKinematics(hopper.plan, controller.motionTarget()).com;
+    const double error = glm::dot(world->linearMomentum() / world->totalMass() -
+                                      (com - previous_com) / world->dt(), travel);
+    previous_com = com;
+    if (k >= 2) {
+      ASSERT_EQ(world->linkContacts()[static_cast<size_t>(foot)], 0) << "landed at step " << k;
+      // The hip's target is relative to the body as it is (its base turns in the air), the
+      // motion's relative to the motion's base.
+      std::vector<glm::dmat4> transforms(hopper.plan.links.size());
+      world->linkTransforms(transforms);
+      auto leg = [&](LinkPose pose, const glm::dquat& base) {
+        pose.base_rotation = base;
+        const std::vector<glm::dvec3> o = linkOrigins(hopper.plan, pose);
+        return o[static_cast<size_t>(foot)] - o[static_cast<size_t>(hip)];
+      };
+      const glm::dvec3 placed =
+          leg(controller.target(), glm::normalize(glm::quat_cast(glm::dmat3(transforms[0]))));
+      const glm::dvec3 tracked =
+          leg(controller.motionTarget(), controller.motionTarget().base_rotation);
+      const double turned = std::acos(std::clamp(
+          glm::dot(glm::normalize(placed), glm::normalize(tracked)), -1.0, 1.0));
+      std::printf("step %d: velocity error %.2f m/s forward; leg turned %.3f rad (asked %.3f), "
+                  "foot %.1f cm forward\n",
+                  k, error, turned, 0.2 * error, 100.0 * glm::dot(placed - tracked, travel));
+      EXPECT_GT(error, 0.9);
+      EXPECT_NEAR(turned, 0.2 * error, 0.05 * 0.2 * error);
+      EXPECT_GT(glm::dot(placed - tracked, travel), 0.0);
+      ++checked;
+    }
+    world->step(zero);
+  }
+  EXPECT_EQ(checked, 4);
+}
+
 // Each pair's forward (what its heading, its sagittal and coronal frames are measured about) over
 // the target's whole cycle: its largest tilt out of the horizontal and its largest angle from the
 // way the motion travels, in degrees. Expects the tilt within 30 degrees, and the turn too where

@@ -345,6 +345,11 @@ double lowestPoint(const Shape& shape, const glm::dmat4& link_to_world) {
   return c.y;
 }
 
+bool isAncestorLink(const BodyPlan& plan, int ancestor, int link) {
+  while (link > ancestor) link = plan.links[static_cast<size_t>(link)].parent;
+  return link == ancestor;
+}
+
 glm::dquat linkRelativeRotation(const Link& link, const glm::dquat& q, double angle) {
   switch (link.type) {
     case JointType::kBall:

@@ -11,11 +11,6 @@
 namespace sinew::physics {
 namespace {
 
-bool isAncestorLink(const BodyPlan& plan, int ancestor, int link) {
-  while (link > ancestor) link = plan.links[static_cast<size_t>(link)].parent;
-  return link == ancestor;
-}
-
 // Gains for one joint-space inverse inertia (see the header): the per-dof cap, then the coupled
 // budget.
 std::vector<DofGains> gainsFor(const std::vector<double>& kp_nominal,

@@ -16,11 +16,6 @@ namespace {
 
 constexpr glm::dvec3 kUp(0.0, 1.0, 0.0);
 
-bool isAncestorLink(const BodyPlan& plan, int ancestor, int link) {
-  while (link > ancestor) link = plan.links[static_cast<size_t>(link)].parent;
-  return link == ancestor;
-}
-
 // Heading angle about +Y of a rotation applied to a horizontal forward vector.
 double headingOf(const glm::dquat& rotation, const glm::dvec3& forward_local) {
   const glm::dvec3 f = rotation * forward_local;
@@ -188,6 +183,24 @@ std::vector<LegPair> findLegPairs(const BodyPlan& plan) {
       ball = ball && plan.links[static_cast<size_t>(hip)].type == JointType::kBall;
     }
     if (ball && pair.hips[0] != pair.hips[1]) pairs.push_back(pair);
+  }
+  // A foot no other foot pairs with (a hopper's one leg) balances alone about the link its leg
+  // hangs from, if that leg has a ball-jointed hip of its own above the foot.
+  for (size_t a = 0; a < feet.size(); ++a) {
+    if (taken[a]) continue;
+    auto carriesAnother = [&](int li) {
+      for (int other : feet)
+        if (other != feet[a] && isAncestorLink(plan, li, other)) return true;
+      return false;
+    };
+    int hip = feet[a];
+    while (plan.links[static_cast<size_t>(hip)].parent > 0 &&
+           !carriesAnother(plan.links[static_cast<size_t>(hip)].parent))
+      hip = plan.links[static_cast<size_t>(hip)].parent;
+    const int base = plan.links[static_cast<size_t>(hip)].parent;
+    if (hip != feet[a] && base >= 0 && plan.links[static_cast<size_t>(hip)].type == JointType::kBall)
+      pairs.push_back(LegPair{{static_cast<int>(a), static_cast<int>(a)}, {hip, hip}, base,
+                              glm::dvec3(0.0, 0.0, 1.0)});
   }
   return pairs;
 }
@@ -549,7 +562,9 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
   const size_t foot1 = static_cast<size_t>(feet_[static_cast<size_t>(pair.feet[1])]);
   const bool down0 = contacts[foot0] > 0;
   const bool down1 = contacts[foot1] > 0;
-  if (!down0 && !down1) return -1;
+  // In the air a pair waits for a foot to land; a leg alone is placed there (below).
+  const bool flight = !down0 && !down1;
+  if (flight && !pair.alone()) return -1;
   // One foot down: it is the stance foot, the other swings. Both down: the one carrying more
   // holds the torso and nothing swings.
   int side_down = down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1);
@@ -583,8 +598,12 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
   const glm::dvec3 d_ref =
       glm::inverse(yaw(heading_target)) * (reference_com_ - reference_ankles_[stance]);
   const glm::dvec3 v_ref = glm::inverse(yaw(heading_target)) * reference_velocity_;
-  const glm::dvec3 forward = yaw(heading_now) * glm::dvec3(0.0, 0.0, 1.0);
-  const glm::dvec3 side = glm::cross(kUp, forward);  // the character's left
+  const Placement placement{base_now, base_wanted, d - d_ref, v - v_ref,
+                            yaw(heading_now) * glm::dvec3(0.0, 0.0, 1.0)};
+  if (flight) {  // Raibert's hopper: the leg in the air lands where it catches the body
+    placeSwingFoot(pair.hips[0], placement);
+    return -1;
+  }
 
   // Stance hip: hold the base.
   const size_t stance_hip = static_cast<size_t>(pair.hips[static_cast<size_t>(side_down)]);
@@ -593,25 +612,29 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
   target_.rotations[stance_hip] =
       glm::normalize(glm::slerp(target_.rotations[stance_hip], held, gains.torso));
 
-  turnStanceAnkle(feet_[stance], v - v_ref, forward, side);
+  turnStanceAnkle(feet_[stance], v - v_ref, placement.forward, glm::cross(kUp, placement.forward));
   driveStanceLegs(pair, contacts, v - v_ref, heading_target, heading_error);
-  if (!swinging) return static_cast<int>(stance);
-  // Swing hip: its target relative to the desired base, turned so the foot lands where it
-  // catches the centre of mass: by how far the offset and velocity differ from the target's (the
-  // target already swings the leg for its nominal gait).
-  // Turning the leg about -side by a positive angle moves the foot forward; about +forward, to
-  // the left.
-  const double sagittal =
-      gains.cd_sagittal * (d.z - d_ref.z) + gains.cv_sagittal * (v.z - v_ref.z);
-  const double coronal = gains.cd_coronal * (d.x - d_ref.x) + gains.cv_coronal * (v.x - v_ref.x);
-  const glm::dquat correction = glm::normalize(glm::angleAxis(sagittal, -side) *
-                                               glm::angleAxis(coronal, forward));
-  const size_t swing_hip = static_cast<size_t>(pair.hips[static_cast<size_t>(1 - side_down)]);
-  const Link& swing_link = plan.links[swing_hip];
-  const glm::dquat thigh_wanted = correction * base_wanted *
-                                  linkRelativeRotation(swing_link, target_.rotations[swing_hip], 0.0);
-  target_.rotations[swing_hip] = coordinateFor(swing_link, base_now, thigh_wanted);
+  if (swinging && !pair.alone())
+    placeSwingFoot(pair.hips[static_cast<size_t>(1 - side_down)], placement);
   return static_cast<int>(stance);
+}
+
+// Swing hip: its target relative to the desired base, turned so the foot lands where it catches
+// the centre of mass: by how far the offset and velocity differ from the target's (the target
+// already swings the leg for its nominal gait). Turning the leg about -side by a positive angle
+// moves the foot forward; about +forward, to the left.
+void TrackingController::placeSwingFoot(int hip, const Placement& p) {
+  const BalanceGains& gains = settings_.balance;
+  const glm::dvec3 side = glm::cross(kUp, p.forward);  // the character's left
+  const double sagittal = gains.cd_sagittal * p.offset_error.z + gains.cv_sagittal * p.velocity_error.z;
+  const double coronal = gains.cd_coronal * p.offset_error.x + gains.cv_coronal * p.velocity_error.x;
+  const glm::dquat correction = glm::normalize(glm::angleAxis(sagittal, -side) *
+                                               glm::angleAxis(coronal, p.forward));
+  const size_t swing_hip = static_cast<size_t>(hip);
+  const Link& swing_link = plan_->links[swing_hip];
+  const glm::dquat thigh_wanted = correction * p.base_wanted *
+                                  linkRelativeRotation(swing_link, target_.rotations[swing_hip], 0.0);
+  target_.rotations[swing_hip] = coordinateFor(swing_link, p.base_now, thigh_wanted);
 }
 
 // The ankle strategy of Lee, Kim and Lee 2010: the planted foot's target turned against the
@@ -656,8 +679,8 @@ void TrackingController::driveStanceLegs(const LegPair& pair,
   const double most = 0.1 * plan_->size_m;
   // The target pose faces the target's heading: the moves are made in its frame, then turned.
   const glm::dquat frame = yaw(heading_target);
-  for (int side : pair.feet) {
-    const size_t f = static_cast<size_t>(side);
+  for (int k = 0; k < (pair.alone() ? 1 : 2); ++k) {
+    const size_t f = static_cast<size_t>(pair.feet[k]);
     if (contacts[static_cast<size_t>(feet_[f])] == 0 || legs_[f].empty()) continue;
     const glm::dvec3 arm = glm::inverse(frame) * (reference_ankles_[f] - reference_com_);
     glm::dvec3 moved = pushed + turn * glm::dvec3(arm.z, 0.0, -arm.x);  // turn x (up x arm)

@@ -110,8 +110,9 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
         seed.omega0 * (1.0 + settings.omega_range), seed.omega0, "omega0");
   // The heading share and the stance legs' turn only where two or more leg pairs balance (a
   // quadruped: feet ahead of and behind the centre of mass); the share from 1, the best measured
-  // on the dog (docs/physics.md). A character with no leg pair (the hopper) has no
-  // balance feedback: of the gains only the swing lift acts on it.
+  // on the dog (docs/physics.md). A character with no leg that balances (neither paired nor a
+  // ball-hipped leg alone, physics::findLegPairs) has no balance feedback: of the gains only the
+  // swing lift acts on it.
   physics::BalanceGains defaults;
   const size_t pairs = physics::findLegPairs(plan).size();
   if (pairs >= 2) defaults.heading = kHeadingPrior;

@@ -156,6 +156,9 @@ Result<BodyPlan> buildBodyPlan(const motion::Skeleton& skeleton,
                                const motion::Clip* observed_motion,
                                const BodyPlanSettings& settings = {});
 
+// Whether `ancestor` is `link` or one of its ancestors (links are stored parents first).
+bool isAncestorLink(const BodyPlan& plan, int ancestor, int link);
+
 // A character pose in link coordinates.
 struct LinkPose {
   glm::dvec3 base_position{0.0};                 // base link frame origin, world metres

@@ -155,11 +155,15 @@ struct LegPair {
   int hips[2] = {0, 0};  // links: each leg's top link below `base`
   int base = 0;          // the link the two legs meet at: the pelvis, a quadruped's chest
   glm::dvec3 forward_local{0.0, 0.0, 1.0};  // the character's forward in the base link's frame
+  // A leg alone (a hopper's): both sides are the one foot and hip. Down, its hip holds the base;
+  // in the air, it is placed to catch the body (Raibert 1984).
+  bool alone() const { return feet[0] == feet[1]; }
 };
 
 // The plan's legs in pairs that balance together (LegPair::feet index the plan's foot links in
 // link order; forward_local is left at +Z): each pair's feet meet at a link below which each has
-// its own ball-jointed hip. Feet pair with the partner they share the deepest link with.
+// its own ball-jointed hip. Feet pair with the partner they share the deepest link with; a foot
+// left without one balances alone (LegPair::alone) if its leg has a ball-jointed hip.
 std::vector<LegPair> findLegPairs(const BodyPlan& plan);
 
 class TrackingController {
@@ -188,9 +192,17 @@ class TrackingController {
   TrackingController() = default;
   void liftSwingFeet(double time);
   void applyFeedback(const World& world);
-  // One pair's feedback; returns its stance foot (index into feet_), -1 with neither foot down.
+  // One pair's feedback; returns its stance foot (index into feet_), -1 with no foot down.
   int balancePair(const World& world, const LegPair& pair, const std::vector<glm::dmat4>& transforms,
                   const std::vector<glm::dquat>& target_world);
+  // Where a swing foot should land, from one pair's frame this step (see balancePair).
+  struct Placement {
+    glm::dquat base_now, base_wanted;  // the base's attitude, and the one its stance hip holds
+    glm::dvec3 offset_error, velocity_error;  // the centre of mass's, less the target's (heading
+                                              // frame: x left, y up, z forward)
+    glm::dvec3 forward;                        // the present heading, in the world
+  };
+  void placeSwingFoot(int hip, const Placement& placement);
   void turnStanceAnkle(int foot_link, const glm::dvec3& velocity_error, const glm::dvec3& forward,
                        const glm::dvec3& side);
   void driveStanceLegs(const LegPair& pair, const std::vector<std::uint8_t>& contacts,
