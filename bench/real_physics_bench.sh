@@ -7,6 +7,8 @@
 #   time, why it fell.
 # A long experiment, not a test: 13 clips x M minutes (M=5: about 70 minutes on 2 cores) per seed.
 #   [SEEDS="1 2 ..."] bench/real_physics_bench.sh [SINEW_BINARY] [MINUTES] [OUT_DIR] [CLIP...]
+# EVOLVE_ARGS (default none): more `sinew evolve` options for every search, e.g.
+#   EVOLVE_ARGS="--trials 5 --trial-push 0.66" for robustness trials at 40 N s on a 60 kg figure.
 # SEEDS (default 1): one search, and one row, per seed and clip. One search's outcome varies with
 # its seed about as much as any controller change measured on the dog (docs/physics.md), so judge
 # a change by several.
@@ -33,6 +35,7 @@ mkdir -p "$out"
 echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg: clip (own target) | evaluations | wall s | push N s fwd/back/left/right | fell because |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 read -r -a seeds <<< "${SEEDS:-1}"
+read -r -a evolve_args <<< "${EVOLVE_ARGS:-}"
 for clip in "${clips[@]}"; do
 for seed in "${seeds[@]}"; do
   name=$(basename "$clip" .bvh)
@@ -42,7 +45,8 @@ for seed in "${seeds[@]}"; do
     name="$name (seed $seed)"
   fi
   start=$(date +%s.%N)
-  "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed "$seed" --out "$dir" > "$dir.evolve.log" 2>&1 || {
+  "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed "$seed" --out "$dir" \
+      "${evolve_args[@]}" > "$dir.evolve.log" 2>&1 || {
     echo "| $name | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$dir.evolve.log") |"
     continue
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <random>
 
@@ -15,6 +16,29 @@
 
 namespace sinew::physics {
 namespace {
+
+// The target's horizontal direction of travel at its start.
+glm::dvec3 travelOf(const MotionState& state) {
+  return glm::normalize(glm::dvec3(state.base_linear.x, 0.0, state.base_linear.z));
+}
+
+// A controller for a test of one feedback term: the target from its first instant (no ramp), no
+// swing lift, no torso hold; `gains` sets the term under test. Null (a test failure) if refused.
+std::unique_ptr<TrackingController> oneTermController(
+    World& world, const test_util::Character& c, const LinkPose& pose,
+    const std::function<void(BalanceGains&)>& gains) {
+  TrackingSettings settings;
+  settings.ramp_s = 0.0;
+  settings.balance.torso = 0.0;
+  settings.balance.swing_lift = 0.0;
+  gains(settings.balance);
+  auto made = TrackingController::create(world, c.asset.skeleton, c.target, pose, settings);
+  if (!made.ok()) {
+    ADD_FAILURE() << made.message();
+    return nullptr;
+  }
+  return std::move(made.value());
+}
 
 TEST(FourierTargets, RecurrenceMatchesTheTargetsPose) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
@@ -145,20 +169,13 @@ TEST(TrackingController, StanceGainsMoveThePlantedFootAgainstTheVelocityError) {
   ASSERT_FALSE(biped.plan.links.empty());
   const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
   std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
-  glm::dvec3 travel = state.base_linear;
-  travel.y = 0.0;
-  travel = glm::normalize(travel);
+  const glm::dvec3 travel = travelOf(state);
   ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
                                    state.joint_velocities).ok());
-  TrackingSettings settings;
-  settings.ramp_s = 0.0;
-  settings.balance.torso = 0.0;  // only the stance gains move a stance foot's target
-  settings.balance.swing_lift = 0.0;
-  settings.balance.stance_sagittal = 0.05;
-  auto made = TrackingController::create(*world, biped.asset.skeleton, biped.target, state.pose,
-                                         settings);
-  ASSERT_TRUE(made.ok()) << made.message();
-  TrackingController& controller = *made.value();
+  std::unique_ptr<TrackingController> made = oneTermController(
+      *world, biped, state.pose, [](BalanceGains& g) { g.stance_sagittal = 0.05; });
+  ASSERT_TRUE(made);
+  TrackingController& controller = *made;
   const std::vector<int> feet = footLinks(biped.plan);
   std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
   glm::dvec3 previous_com(0.0);
@@ -200,15 +217,10 @@ TEST(TrackingController, StanceYawTurnsThePlantedFeetAgainstTheHeadingError) {
   state.pose.base_rotation =
       glm::angleAxis(turned, glm::dvec3(0.0, 1.0, 0.0)) * state.pose.base_rotation;
   std::unique_ptr<World> world = World::create(trot.plan, state.pose).value();
-  TrackingSettings settings;
-  settings.ramp_s = 0.0;
-  settings.balance.torso = 0.0;  // only the stance turn moves a stance foot's target
-  settings.balance.swing_lift = 0.0;
-  settings.balance.stance_yaw = 0.3;
-  auto made = TrackingController::create(*world, trot.asset.skeleton, trot.target, state.pose,
-                                         settings);
-  ASSERT_TRUE(made.ok()) << made.message();
-  TrackingController& controller = *made.value();
+  std::unique_ptr<TrackingController> made = oneTermController(
+      *world, trot, state.pose, [](BalanceGains& g) { g.stance_yaw = 0.3; });
+  ASSERT_TRUE(made);
+  TrackingController& controller = *made;
   const std::vector<int> feet = footLinks(trot.plan);
   std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
   bool front = false, hind = false;  // a foot ahead of the centre of mass checked, one behind
@@ -701,19 +713,13 @@ TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
   MotionState state = targetState(hopper.plan, hopper.asset.skeleton, hopper.target, 0.0);
   state.pose.base_position.y += 0.4;
   std::unique_ptr<World> world = World::create(hopper.plan, state.pose).value();
-  glm::dvec3 travel = state.base_linear;
-  travel.y = 0.0;
-  travel = glm::normalize(travel);
+  const glm::dvec3 travel = travelOf(state);
   ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
                                    state.joint_velocities).ok());
-  TrackingSettings settings;
-  settings.ramp_s = 0.0;
-  settings.balance.swing_lift = 0.0;
-  settings.balance.cv_sagittal = 0.2;
-  auto made = TrackingController::create(*world, hopper.asset.skeleton, hopper.target, state.pose,
-                                         settings);
-  ASSERT_TRUE(made.ok()) << made.message();
-  TrackingController& controller = *made.value();
+  std::unique_ptr<TrackingController> made = oneTermController(
+      *world, hopper, state.pose, [](BalanceGains& g) { g.cv_sagittal = 0.2; });
+  ASSERT_TRUE(made);
+  TrackingController& controller = *made;
   const int hip = controller.legPairs()[0].hips[0];
   const int foot = controller.feet()[0];
   std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
