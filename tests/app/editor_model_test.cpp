@@ -305,8 +305,8 @@ TEST_F(EditorModelTest, EverySettingIsOneUndoStepAndADragIsOne) {
   }
   EXPECT_EQ(undone,
             (std::vector<std::string>{"optimizer ga", "pushes", "terrain steps:0.05,0.6",
-                                      "speed 0.25x", "grid off", "weight tracking 5 -> 3"}));
-  EXPECT_EQ(state.evolution.settings.search.weights.tracking, 5.0);
+                                      "speed 0.25x", "grid off", "weight tracking 10 -> 3"}));
+  EXPECT_EQ(state.evolution.settings.search.weights.tracking, 10.0);
   EXPECT_TRUE(state.view.show_grid);
   EXPECT_EQ(state.playback.speed, 1.0);
   EXPECT_EQ(app::terrainText(state.evolution.settings.physics.terrain), "flat");
