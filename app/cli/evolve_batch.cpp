@@ -119,6 +119,7 @@ nlohmann::json resultRow(const fs::path& clip, const fs::path& dir, int exit_cod
     const nlohmann::json fitness = nlohmann::json::parse(best).at("fitness");
     row["stood_up_s"] = fitness.at("survived_s");
     row["fell"] = fitness.at("fell");
+    row["fell_because"] = fitness.value("fall_reason", "");
     row["distance_m"] = fitness.at("distance_m");
     row["speed_m_s"] = fitness.at("speed_m_s");
     row["tracking_deg"] = fitness.at("track_err_rad_rms").get<double>() * 180.0 / std::numbers::pi;
@@ -185,8 +186,9 @@ std::string csvField(const nlohmann::json& row, const char* key) {
 // Returns how many rows they have.
 Result<int> writeSummary(const fs::path& out, const std::vector<std::string>& folders) {
   static const char* kColumns[] = {
-      "clip", "status",      "stood_up_s",  "fell",   "distance_m", "speed_m_s", "tracking_deg",
-      "cost", "generations", "evaluations", "wall_s", "rank",       "folder"};
+      "clip",        "status",       "stood_up_s", "fell",        "fell_because",
+      "distance_m",  "speed_m_s",    "tracking_deg", "cost",      "generations",
+      "evaluations", "wall_s",       "rank",         "folder"};
   nlohmann::json rows = nlohmann::json::array();
   std::ostringstream csv;
   for (size_t c = 0; c < std::size(kColumns); ++c) csv << (c ? "," : "") << kColumns[c];
@@ -225,6 +227,8 @@ void printRow(const nlohmann::json& row, int done, int total) {
         row.at("speed_m_s").get<double>(), row.at("tracking_deg").get<double>(),
         row.at("cost").get<double>(), row.at("generations").get<int>(),
         row.at("wall_s").get<double>(), row.at("rank").get<int>());
+    if (row.value("fell", false) && !row.value("fell_because", "").empty())
+      std::printf("    fell: %s\n", row.at("fell_because").get<std::string>().c_str());
   }
   std::fflush(stdout);
 }

@@ -160,8 +160,7 @@ void printReport(const physics::SimulationReport& r) {
     std::printf("  %-16s on the ground %3.0f%% of the time\n", r.feet[f].c_str(),
                 100.0 * r.contact_share[f]);
   std::printf("  %zu footfalls\n", r.footfalls.size());
-  printTorqueLimited(r);
-  printTrackingByJoint(r, "the target");
+  printJointLines(physics::jointFigures(r), "the target");
 }
 
 // A CSV header cell: quoted when the name holds a comma, a quote or a line break.

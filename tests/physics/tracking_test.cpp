@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "physics_test_util.h"
+#include "sinew/physics/joint_figures.h"
 #include "sinew/physics/simulation.h"
 
 namespace sinew::physics {
@@ -540,6 +541,26 @@ TEST(Simulation, TheReportCountsStepsAtTheTorqueLimit) {
     if (biped.plan.links[li].supports) EXPECT_GT(share, 0.5) << weak.links[li];
     else EXPECT_EQ(share, 0.0) << weak.links[li];
   }
+}
+
+// The lines an artist reads: the joints at their torque limit 5% of the steps or more, busiest
+// first, four at most; the three joints furthest from the target, in degrees; nothing from the
+// base (link 0) and nothing when no joint qualifies.
+TEST(Simulation, JointLinesNameTheBusiestAndTheFurthestJoints) {
+  JointFigures f;
+  f.links = {"Hips", "Knee_L", "Knee_R", "Hip_L", "Hip_R", "Ankle_L", "Ankle_R"};
+  f.torque_limited_share = {0.9, 0.31, 0.049, 0.26, 0.5, 0.05, 0.07};
+  f.track_err_by_link_rad = {1.0, 0.0, 0.1, 0.2, 0.05, 0.3, 0.0};
+  EXPECT_EQ(torqueLimitLine(f),
+            "at the torque limit: Hip_R 50%, Knee_L 31%, Hip_L 26%, Ankle_R 7% of the steps "
+            "(and more)");
+  EXPECT_EQ(furthestJointsLine(f, "the clip"),
+            "furthest from the clip: Ankle_L 17.2, Hip_L 11.5, Knee_R 5.7 deg RMS");
+  f.torque_limited_share = {0.9, 0.01, 0.0, 0.049, 0.0, 0.0, 0.0};
+  f.track_err_by_link_rad.assign(f.links.size(), 0.0);
+  EXPECT_EQ(torqueLimitLine(f), "");
+  EXPECT_EQ(furthestJointsLine(f, "the clip"), "");
+  EXPECT_EQ(torqueLimitLine(JointFigures{}), "");  // a report without links (another process's)
 }
 
 // Settings for a traced run of `seconds`.

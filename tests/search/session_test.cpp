@@ -159,6 +159,24 @@ TEST(SearchSession, SameSeedSameBestOnOneAndTwoThreads) {
   EXPECT_EQ(cost[0], cost[1]);
 }
 
+// The snapshot carries the best run's joint figures (what the editor's Evolve panel prints): those
+// of a replay of the best point, joint for joint.
+TEST(SearchSession, TheSnapshotCarriesTheBestRunsJointFigures) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  auto session = Session::create(makeProblem(biped, 1.5), small(2)).value();
+  while (session->runGeneration()) {
+  }
+  const auto snap = session->snapshot();
+  ASSERT_FALSE(snap->best_point.empty());
+  const physics::SimulationReport replay = evaluate(session->problem(), snap->best_point).report;
+  EXPECT_EQ(snap->best_joints.links, replay.links);
+  EXPECT_EQ(snap->best_joints.torque_limited_share, replay.torque_limited_share);
+  EXPECT_EQ(snap->best_joints.track_err_by_link_rad, replay.track_err_by_link_rad);
+  EXPECT_EQ(snap->best_joints.links.size(), biped.plan.links.size());
+  EXPECT_NE(physics::furthestJointsLine(snap->best_joints, "the clip"), "");
+}
+
 TEST(SearchSession, StopInterruptsEvaluationsInFlightAndPausingChangesNothing) {
   const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());

@@ -78,6 +78,8 @@ for out in ("batch", "array"):
     names = [r["folder"] for r in rows]
     if names != ["biped_walk", "hopper_hop", "stepper_step"] or any(r["status"] != "ok" for r in rows):
         sys.exit(f"FAIL: {out}/summary.csv: {rows}")
+    if any((r["fell"] == "true") != bool(r["fell_because"]) for r in rows):
+        sys.exit(f"FAIL: {out}/summary.csv: a fall without its reason, or a reason without a fall: {rows}")
     for name in names:
         json.load(open(f"{out}/{name}/best.json"))
     print(f"{out}: summary of 3 clips, " + ", ".join(f"{r['folder']} cost {r['cost']} (rank {r['rank']})" for r in rows))

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include <imgui.h>
 
 #include "editor/ghost.h"
 #include "editor/panels/panels.h"
+#include "sinew/physics/joint_figures.h"
 
 namespace sinew::editor {
 namespace {
@@ -255,6 +257,16 @@ void drawPopulationList(EvolutionState& evolution) {
   ImGui::TreePop();
 }
 
+// The best run's joints at their torque limit and furthest from the clip (physics/joint_figures.h):
+// where an artist looks when it falls or loses the style.
+void drawBestJoints(const search::Snapshot& snap, bool unedited) {
+  const std::string limited = physics::torqueLimitLine(snap.best_joints);
+  const std::string furthest =
+      physics::furthestJointsLine(snap.best_joints, unedited ? "the clip" : "the edited clip");
+  if (!limited.empty()) ImGui::TextWrapped("%s", limited.c_str());
+  if (!furthest.empty()) ImGui::TextWrapped("%s", furthest.c_str());
+}
+
 // The generation, the budget spent, and the terms of the individual clicked in the viewport
 // (or the best so far), its ghost's deviation, then the history plot.
 void drawProgress(EditorState& state, search::SessionState run_state, bool running) {
@@ -299,6 +311,7 @@ void drawProgress(EditorState& state, search::SessionState run_state, bool runni
               t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s, t.total);
   if (t.fell && !t.fall_reason.empty())
     ImGui::TextWrapped("why it fell: %s", t.fall_reason.c_str());
+  if (!show_picked) drawBestJoints(snap, evolution.started.edits.styles.empty());
   if (ImGui::BeginTable("terms", search::kFitnessTermCount, ImGuiTableFlags_SizingStretchSame)) {
     for (int k = 0; k < search::kFitnessTermCount; ++k)
       ImGui::TableSetupColumn(search::fitnessTermName(k));

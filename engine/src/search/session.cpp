@@ -349,6 +349,7 @@ bool Session::runGeneration() {
     if (std::isfinite(costs[best]) && (best_point_.empty() || costs[best] < best_terms_.total)) {
       best_point_ = points[best];
       best_terms_ = results[best].terms;
+      best_joints_ = physics::jointFigures(results[best].report);
     }
   }
   auto snap = std::make_shared<Snapshot>();
@@ -359,6 +360,7 @@ bool Session::runGeneration() {
     snap->history = history_;
     snap->best_point = best_point_;
     snap->best_terms = best_terms_;
+    snap->best_joints = best_joints_;
     snap->population = points;
     for (Evaluation& e : results) {
       snap->population_terms.push_back(e.terms);
@@ -381,6 +383,7 @@ void Session::publish(SessionState state) {
     snap->history = history_;
     snap->best_point = best_point_;
     snap->best_terms = best_terms_;
+    snap->best_joints = best_joints_;
   }
   snap->state = state;
   snap->failure = failureLocked();

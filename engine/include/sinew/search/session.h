@@ -28,6 +28,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "sinew/core/status.h"
+#include "sinew/physics/joint_figures.h"
 #include "sinew/search/optimizer.h"
 #include "sinew/search/problem.h"
 
@@ -100,6 +101,9 @@ struct Snapshot {
   std::vector<GenerationRecord> history;
   std::vector<double> best_point;  // best so far (empty before the first generation)
   FitnessTerms best_terms;
+  // The best run's joints at their torque limit and furthest from the clip, for the user (empty
+  // after a resume until a new best, and for a best evaluated by another process).
+  physics::JointFigures best_joints;
   std::vector<std::vector<double>> population;  // the last finished generation's points
   std::vector<FitnessTerms> population_terms;
   std::vector<motion::Clip> population_motions;  // when record_population
@@ -159,6 +163,7 @@ class Session {
   std::vector<GenerationRecord> history_;
   std::vector<double> best_point_;
   FitnessTerms best_terms_;
+  physics::JointFigures best_joints_;
   double wall_offset_s_ = 0.0;  // wall time of earlier parts (resumed sessions)
   double started_at_ = 0.0;
   GenerationEvaluator evaluator_;  // empty: evaluateAll
