@@ -448,8 +448,7 @@ int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
   std::printf("best after %d generations (%lld evaluations): %s\n", snap->generation,
               snap->evaluations, termsLine(snap->best_terms).c_str());
   const pipeline::BestReplay best = pipeline::replayBest(session.problem(), snap->best_point);
-  printJointLines(physics::jointFigures(best.run),
-                  settings.edits.styles.empty() ? "the clip" : "the edited clip");
+  printJointLines(physics::jointFigures(best.run), pipeline::trackedName(settings));
   if (Status s = reportStyle(session.problem(), best, settings.edits, out); !s.ok())
     return fail(s.message());
   Result<bool> looped = writeLoop(session.problem(), best, args, settings.edits, rig.asset);

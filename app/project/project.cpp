@@ -1,13 +1,13 @@
 #include "project/project.h"
 
 #include <charconv>
-#include <initializer_list>
 #include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "sinew/core/file_io.h"
+#include "sinew/core/json_keys.h"
 #include "sinew/core/path_json.h"
 #include "sinew/core/text.h"
 
@@ -88,20 +88,6 @@ Status readWeights(const json& object, search::FitnessWeights& weights, const st
   return Status();
 }
 
-// Names the keys of `object` that are not in `known` ("search.speed") in `warnings`.
-void unknownKeys(const json& object, std::initializer_list<const char*> known,
-                 const std::string& prefix, const std::string& name,
-                 std::vector<std::string>* warnings) {
-  if (warnings == nullptr || !object.is_object()) return;
-  for (const auto& [key, value] : object.items()) {
-    bool found = false;
-    for (const char* k : known) found = found || key == k;
-    if (!found)
-      warnings->push_back(name + ": unknown key '" + prefix + key +
-                          "' (left out; a newer sinew's?)");
-  }
-}
-
 // The format and version of a project document.
 Status checkHeader(const json& document, const std::string& where) {
   if (!document.is_object()) return Status::error(where + "expected a JSON object");
@@ -163,7 +149,7 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     unknownKeys(search,
                 {"minutes", "population", "no_prior", "optimizer", "seed", "weights", "trials",
                  "trial_push_m_s", "restart_after"},
-                "search.", name, warnings);
+                name, warnings, "search.");
     check(read(search, "minutes", project.search.minutes, in));
     check(read(search, "population", project.search.population, in));
     check(read(search, "no_prior", project.search.no_prior, in));
@@ -188,7 +174,7 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     unknownKeys(view,
                 {"speed", "loop", "show_original", "show_model", "model_beside", "follow",
                  "show_grid", "show_end_sites", "show_population", "show_ghost"},
-                "view.", name, warnings);
+                name, warnings, "view.");
     ViewSettings& v = project.view;
     check(read(view, "speed", v.speed, in));
     check(read(view, "loop", v.loop, in));
@@ -216,12 +202,11 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   }
   const std::string where = name + ": ";
   if (Status valid = checkHeader(document, where); !valid.ok()) return valid;
-  unknownKeys(document,
-              {"format", "version", "rig", "rig_encoding", "clip", "clip_encoding", "animation",
-               "target", "target_encoding", "harmonics",
-               "joint_harmonics", "band_gains", "styles", "secondary", "terrain", "window_s",
-               "pushes", "body", "search", "view"},
-              "", name, warnings);
+  unknownKeys(document, {"format",          "version",    "rig",    "rig_encoding",    "clip",
+                         "clip_encoding",   "animation",  "target", "target_encoding", "harmonics",
+                         "joint_harmonics", "band_gains", "styles", "secondary",       "terrain",
+                         "window_s",        "pushes",     "body",   "search",          "view"},
+              name, warnings, "");
   Project project;
   Status status;
   auto check = [&](Status s) {
@@ -271,8 +256,9 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
     return Status();
   };
   Status lists = objects("styles", [&](const json& item, const std::string& in) {
-    unknownKeys(item, {"label", "neutral", "neutral_encoding", "styled", "styled_encoding", "weight"},
-                in.substr(where.size()), name, warnings);
+    unknownKeys(item,
+                {"label", "neutral", "neutral_encoding", "styled", "styled_encoding", "weight"},
+                name, warnings, in.substr(where.size()));
     StylePair pair;
     check(read(item, "label", pair.label, in));
     check(readPathJson(item, "neutral", pair.neutral, in));
@@ -285,8 +271,8 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   });
   if (!lists.ok()) return lists;
   lists = objects("secondary", [&](const json& item, const std::string& in) {
-    unknownKeys(item, {"joint", "axis", "kind", "frequency_hz", "amplitude_deg", "seed"},
-                in.substr(where.size()), name, warnings);
+    unknownKeys(item, {"joint", "axis", "kind", "frequency_hz", "amplitude_deg", "seed"}, name,
+                warnings, in.substr(where.size()));
     SecondaryMotion source;
     std::string kind = "periodic";
     check(read(item, "joint", source.joint, in));
@@ -305,7 +291,7 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
   if (document.contains("body")) {
     const json& body = document.at("body");
     if (!body.is_object()) return Status::error(where + "body: expected an object");
-    unknownKeys(body, {"masses", "fixed", "hinge_limits"}, "body.", name, warnings);
+    unknownKeys(body, {"masses", "fixed", "hinge_limits"}, name, warnings, "body.");
     std::vector<std::string> masses, fixed, hinge_limits;
     check(read(body, "masses", masses, where + "body."));
     check(read(body, "fixed", fixed, where + "body."));

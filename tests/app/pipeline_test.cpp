@@ -102,12 +102,26 @@ TEST(PipelineTest, TheCommandLineAndTheEditorBuildTheSameProblemAndReachTheSameC
   const test::CommandResult run = test::runSinew("evolve " + test::quote(file) +
                                                  " --generations 2 --out " + test::quote(from_cli));
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  // The project's band gain edits the model: the joint lines say what was tracked.
+  EXPECT_NE(run.out.find("furthest from the edited clip: "), std::string::npos) << run.out;
   const nlohmann::json best = nlohmann::json::parse(test::readText(from_cli / "best.json"));
   EXPECT_EQ(best.at("fitness").at("total").get<double>(),
             state.evolution.snapshot->best_terms.total);
   EXPECT_EQ(test::readText(from_editor / "best.json"), test::readText(from_cli / "best.json"));
   for (const char* name : {"best.bvh", "best.glb", "history.csv", "checkpoint.json"})
     EXPECT_TRUE(std::filesystem::exists(from_editor / name)) << name;
+}
+
+TEST(PipelineTest, TheTrackedMotionIsNamedAsTheSearchBuildsIt) {
+  pipeline::ProjectSettings settings;
+  EXPECT_STREQ(pipeline::trackedName(settings), "the clip");
+  settings.edits.band_gains[0][1] = 1.2;
+  EXPECT_STREQ(pipeline::trackedName(settings), "the edited clip");
+  settings.edits = {};
+  settings.edits.styles.push_back({});
+  EXPECT_STREQ(pipeline::trackedName(settings), "the edited clip");
+  settings.target = "tired.json";  // tracked as it is, edits or not (pipeline::trackedMotion)
+  EXPECT_STREQ(pipeline::trackedName(settings), "the coefficients");
 }
 
 TEST(PipelineTest, KPerJointByAnUnknownNameIsAnErrorNamingItInBothPaths) {
@@ -153,10 +167,10 @@ TEST(PipelineTest, UnknownProjectKeysAreWarnedNamingTheKeyAndTheFile) {
   EXPECT_EQ(project.value().search.seed, 2u);
   EXPECT_EQ(project.value().physics.window_s, 10.0);  // a misspelt key sets nothing
   const std::vector<std::string> expected = {
-      "mine.sinew.json: unknown key 'colour' (left out; a newer sinew's?)",
-      "mine.sinew.json: unknown key 'windw_s' (left out; a newer sinew's?)",
-      "mine.sinew.json: unknown key 'search.speed' (left out; a newer sinew's?)",
-      "mine.sinew.json: unknown key 'view.zoom' (left out; a newer sinew's?)"};
+      "mine.sinew.json: unknown key 'colour' (ignored)",
+      "mine.sinew.json: unknown key 'windw_s' (ignored)",
+      "mine.sinew.json: unknown key 'search.speed' (ignored)",
+      "mine.sinew.json: unknown key 'view.zoom' (ignored)"};
   EXPECT_EQ(warnings, expected);
 }
 

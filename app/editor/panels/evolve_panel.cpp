@@ -14,6 +14,7 @@
 #include "editor/ghost.h"
 #include "editor/panels/panels.h"
 #include "sinew/physics/joint_figures.h"
+#include "sinew/pipeline/pipeline.h"
 
 namespace sinew::editor {
 namespace {
@@ -259,10 +260,10 @@ void drawPopulationList(EvolutionState& evolution) {
 
 // The best run's joints at their torque limit and furthest from the clip (physics/joint_figures.h):
 // where an artist looks when it falls or loses the style.
-void drawBestJoints(const search::Snapshot& snap, bool unedited) {
+void drawBestJoints(const search::Snapshot& snap, const pipeline::ProjectSettings& started) {
   const std::string limited = physics::torqueLimitLine(snap.best_joints);
   const std::string furthest =
-      physics::furthestJointsLine(snap.best_joints, unedited ? "the clip" : "the edited clip");
+      physics::furthestJointsLine(snap.best_joints, pipeline::trackedName(started));
   if (!limited.empty()) ImGui::TextWrapped("%s", limited.c_str());
   if (!furthest.empty()) ImGui::TextWrapped("%s", furthest.c_str());
 }
@@ -311,7 +312,7 @@ void drawProgress(EditorState& state, search::SessionState run_state, bool runni
               t.fell ? "fell after" : "walked", t.survived_s, t.distance_m, t.speed_m_s, t.total);
   if (t.fell && !t.fall_reason.empty())
     ImGui::TextWrapped("why it fell: %s", t.fall_reason.c_str());
-  if (!show_picked) drawBestJoints(snap, evolution.started.edits.styles.empty());
+  if (!show_picked) drawBestJoints(snap, evolution.started);
   if (ImGui::BeginTable("terms", search::kFitnessTermCount, ImGuiTableFlags_SizingStretchSame)) {
     for (int k = 0; k < search::kFitnessTermCount; ++k)
       ImGui::TableSetupColumn(search::fitnessTermName(k));

@@ -159,6 +159,11 @@ Result<TrackedMotion> trackedMotion(const motion::Skeleton& skeleton, const moti
   return out;
 }
 
+const char* trackedName(const ProjectSettings& settings) {
+  if (!settings.target.empty()) return "the coefficients";
+  return settings.edits.empty() ? "the clip" : "the edited clip";
+}
+
 Result<physics::BodyPlan> bodyPlan(const motion::Skeleton& skeleton, const motion::Clip& clip,
                                    const BodyOverrides& body, const std::string& rig) {
   Result<physics::BodyPlanSettings> settings = body.planSettings();

@@ -10,8 +10,10 @@
 namespace sinew {
 
 // For every key of `object` (when it is an object) not in `known`, appends
-// "<where>: unknown key '<key>' (ignored)" to `warnings` (nothing when warnings is null).
+// "<where>: unknown key '<prefix><key>' (ignored)" to `warnings` (nothing when warnings is null).
+// `prefix` names a nested object by its path ("search.").
 void unknownKeys(const nlohmann::json& object, const std::vector<const char*>& known,
-                 const std::string& where, std::vector<std::string>* warnings);
+                 const std::string& where, std::vector<std::string>* warnings,
+                 const std::string& prefix = "");
 
 }  // namespace sinew

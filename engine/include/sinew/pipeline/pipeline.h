@@ -73,6 +73,10 @@ struct TrackedMotion {
 Result<TrackedMotion> trackedMotion(
     const motion::Skeleton& skeleton, const motion::Clip& clip, const ProjectSettings& settings,
     const std::vector<const spectral::StyleVector*>* styles = nullptr);
+// What a search of `settings` tracks, in the words of lines an artist reads ("furthest from the
+// clip: ..."): "the coefficients" of `settings.target`, "the edited clip" when the project edits
+// the model (band gains, styles, secondary motion), else "the clip".
+const char* trackedName(const ProjectSettings& settings);
 // The body plan of `clip` with the overrides (the message names the rig).
 Result<physics::BodyPlan> bodyPlan(const motion::Skeleton& skeleton, const motion::Clip& clip,
                                    const BodyOverrides& body, const std::string& rig);
