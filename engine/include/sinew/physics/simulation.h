@@ -46,10 +46,12 @@ struct SimulationSettings {
   bool stop_at_fall = true;   // end the run when the character falls
   bool trace = false;         // record SimulationReport::trace, one TraceStep per step (seconds
                               // <= kMaxTracedSeconds)
-  const spectral::TargetMotion* reference = nullptr;  // when set, track_err_rad_rms is measured
-                                                     // against this motion (the style the search
-                                                     // must keep), not the one the controller
-                                                     // tracks; same skeleton, not owned
+  // When set, track_err_rad_rms is measured against this motion (the style the search must
+  // keep), not the one the controller tracks, at the target's phase: at time t the reference's
+  // pose at t x (target omega0 / reference omega0), so a run whose target keeps the clip's shape
+  // at another tempo is not read as a drifting error (a 9% faster cadence reads 25 deg over 10 s
+  // at the clip's clock). Same skeleton, not owned.
+  const spectral::TargetMotion* reference = nullptr;
   const std::atomic<bool>* cancel = nullptr;  // when set and true, the run ends at the next step
                                               // (SimulationReport::cancelled): how a search stops
                                               // within its latency budget mid-evaluation
