@@ -377,27 +377,6 @@ TEST(Simulation, SameInputsGiveBitIdenticalRecordings) {
   EXPECT_EQ(a.distance_m, b.distance_m);
 }
 
-// Tracking against a reference (the clip's model, which the search's fitness keeps) is measured
-// at the target's phase: a target with the clip's shape at a 10% faster tempo tracks the clip as
-// closely as it tracks itself. At the clip's own clock the phases would drift apart by 0.1 x
-// omega0 x t (0.9 rad of the walk's stride over 1.5 s) and read as an error the style has not.
-TEST(Simulation, AReferenceIsTrackedAtTheTargetsPhase) {
-  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
-  ASSERT_FALSE(biped.plan.links.empty());
-  spectral::TargetMotion faster = biped.target;
-  faster.omega0 *= 1.1;
-  SimulationSettings settings = shortRun(1.5);
-  settings.reference = &faster;  // itself, measured as a reference is (after each step)
-  const SimulationReport own = simulate(biped.plan, biped.asset.skeleton, faster, settings).value();
-  settings.reference = &biped.target;
-  const SimulationReport clip = simulate(biped.plan, biped.asset.skeleton, faster, settings).value();
-  ASSERT_GT(own.track_err_rad_rms, 0.0);
-  EXPECT_NEAR(clip.track_err_rad_rms, own.track_err_rad_rms, 1e-12);
-  ASSERT_EQ(clip.track_err_by_link_rad.size(), own.track_err_by_link_rad.size());
-  for (size_t li = 0; li < own.track_err_by_link_rad.size(); ++li)
-    EXPECT_NEAR(clip.track_err_by_link_rad[li], own.track_err_by_link_rad[li], 1e-12) << li;
-}
-
 // The recording's first frame is the start pose on the skeleton: every joint with a body of its
 // own at its simulated rotation, which at t = 0 is the target's.
 TEST(Simulation, RecordingStartsAtTheTargetsPoseOnTheSkeleton) {

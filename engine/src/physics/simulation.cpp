@@ -481,13 +481,10 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
   std::unique_ptr<FourierTargets> reference;
   std::vector<glm::dquat> reference_pose(static_cast<size_t>(skeleton.jointCount()));
   LinkPose reference_links;
-  double reference_clock = 1.0;  // reference time per run time: the same phase as the target's
   if (settings.reference != nullptr) {
     if (Status s = settings.reference->validate(skeleton); !s.ok())
       return Status::error("reference motion: " + s.message());
     reference = std::make_unique<FourierTargets>(*settings.reference);
-    if (target.omega0 > 0.0 && settings.reference->omega0 > 0.0)
-      reference_clock = target.omega0 / settings.reference->omega0;
   }
   recorder.record(world, report);
   next_record += record_every;
@@ -516,7 +513,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
     // at the last recorded frame), energy and torques.
     const LinkPose* wanted = &controller.motionTarget();
     if (reference) {
-      reference->evaluate(world.time() * reference_clock, reference_pose);
+      reference->evaluate(world.time(), reference_pose);
       reference_links =
           linkPoseFromSkeleton(plan, skeleton, reference_pose, recorder.reference_translations);
       wanted = &reference_links;

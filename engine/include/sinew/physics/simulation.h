@@ -47,10 +47,10 @@ struct SimulationSettings {
   bool trace = false;         // record SimulationReport::trace, one TraceStep per step (seconds
                               // <= kMaxTracedSeconds)
   // When set, track_err_rad_rms is measured against this motion (the style the search must
-  // keep), not the one the controller tracks, at the target's phase: at time t the reference's
-  // pose at t x (target omega0 / reference omega0), so a run whose target keeps the clip's shape
-  // at another tempo is not read as a drifting error (a 9% faster cadence reads 25 deg over 10 s
-  // at the clip's clock). Same skeleton, not owned.
+  // keep), not the one the controller tracks, at the same time: a target that changed the tempo
+  // drifts out of phase with it, which reads as error (the tempo is part of the style; measuring
+  // at the target's phase instead was tried and kept the shape worse, docs/search.md). Same
+  // skeleton, not owned.
   const spectral::TargetMotion* reference = nullptr;
   const std::atomic<bool>* cancel = nullptr;  // when set and true, the run ends at the next step
                                               // (SimulationReport::cancelled): how a search stops
