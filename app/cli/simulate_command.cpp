@@ -179,7 +179,8 @@ std::string traceCsv(const physics::SimulationReport& r) {
          "target_com_y_m,target_com_z_m,target_vx_m_s,target_vy_m_s,target_vz_m_s,stance_foot";
   for (const std::string& foot : r.feet) {
     const std::string f = toUtf8(foot);
-    for (const char* column : {"_contacts", "_x_m", "_y_m", "_z_m", "_force_n"})
+    for (const char* column : {"_contacts", "_x_m", "_y_m", "_z_m", "_force_n", "_target_x_m",
+                               "_target_y_m", "_target_z_m"})
       csv << ',' << csvCell(f + column);
   }
   for (size_t li = 1; li < r.links.size(); ++li) {
@@ -199,6 +200,7 @@ std::string traceCsv(const physics::SimulationReport& r) {
       csv << ',' << static_cast<int>(step.foot_contacts[f]);
       vec(step.foot_positions[f]);
       csv << ',' << step.foot_forces_n[f];
+      vec(step.target_foot_positions[f]);
     }
     for (size_t li = 1; li < step.torques_nm.size(); ++li)
       csv << ',' << step.torques_nm[li] << ',' << static_cast<int>(step.at_limit[li]);

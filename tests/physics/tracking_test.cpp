@@ -611,6 +611,10 @@ TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
   // The body starts in the target's pose, so the two centres of mass start together; the walk
   // goes forward (+Z) at about 1.3 m/s, the target's velocity with it.
   EXPECT_LT(glm::length(r.trace[0].com - r.trace[0].target_com), 0.02);
+  ASSERT_EQ(r.trace[0].target_foot_positions.size(), r.feet.size());
+  for (size_t f = 0; f < r.feet.size(); ++f)  // and so do the feet, the target's and the body's
+    EXPECT_LT(glm::length(r.trace[0].foot_positions[f] - r.trace[0].target_foot_positions[f]), 0.02)
+        << r.feet[f];
   EXPECT_NEAR(r.trace[0].target_velocity.z, r.trace[0].com_velocity.z, 0.1);
   double mean_vz = 0.0;
   for (const TraceStep& step : r.trace) mean_vz += step.target_velocity.z / 120.0;

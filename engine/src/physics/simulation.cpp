@@ -258,7 +258,8 @@ TraceStep traceStep(const World& world, const TrackingController& controller,
   row.time_s = world.time();
   row.com = world.centreOfMass();
   row.com_velocity = world.linearMomentum() / world.totalMass();
-  row.target_com = poseKinematics(plan, controller.motionTarget()).com;
+  const PoseKinematics target = poseKinematics(plan, controller.motionTarget());
+  row.target_com = target.com;
   row.target_velocity = (row.target_com - previous_target) / world.dt();
   previous_target = row.target_com;
   row.stance_foot = controller.stanceFoot();
@@ -266,6 +267,7 @@ TraceStep traceStep(const World& world, const TrackingController& controller,
     const size_t li = static_cast<size_t>(f);
     row.foot_contacts.push_back(world.linkContacts()[li]);
     row.foot_positions.push_back(glm::dvec3(transforms[li][3]));
+    row.target_foot_positions.push_back(target.pivots[li]);
     row.foot_forces_n.push_back(world.linkNormalForces()[li]);
   }
   row.torques_nm.assign(plan.links.size(), 0.0);

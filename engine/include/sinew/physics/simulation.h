@@ -79,6 +79,9 @@ struct TraceStep {
                                     // it; -1: none was down
   std::vector<std::uint8_t> foot_contacts;  // (feet) contact points with the ground
   std::vector<glm::dvec3> foot_positions;   // (feet) the foot's pivot (ankle), world metres
+  std::vector<glm::dvec3> target_foot_positions;  // (feet) the same in the motion's pose the
+                                                  // servos aimed at (the frame of target_com):
+                                                  // where the target lifts and lands each foot
   std::vector<double> foot_forces_n;        // (feet) the ground's normal force
   std::vector<double> torques_nm;           // (links; 0 for the base) largest |servo torque| of
                                             // the joint's axes
