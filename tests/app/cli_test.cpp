@@ -459,8 +459,9 @@ TEST(CliTest, SimulateTracesEveryStepAsCsv) {
   };
   const std::vector<std::string> names = cells(header);
   EXPECT_EQ(names.front(), "time_s");
-  // 14 columns, five per foot (2), two per joint (12 joints below the pelvis).
-  EXPECT_EQ(names.size(), 14u + 5u * 2u + 2u * 12u) << header;
+  // 14 columns, eight per foot (2: contacts, pivot, force, the target's pivot), two per joint
+  // (12 joints below the pelvis).
+  EXPECT_EQ(names.size(), 14u + 8u * 2u + 2u * 12u) << header;
   int rows = 0;
   for (; std::getline(lines, line); ++rows) {
     const std::vector<std::string> row = cells(line);
