@@ -206,7 +206,7 @@ Result<Project> parseProject(const std::string& text, const std::filesystem::pat
                          "clip_encoding",   "animation",  "target", "target_encoding", "harmonics",
                          "joint_harmonics", "band_gains", "styles", "secondary",       "terrain",
                          "window_s",        "pushes",     "body",   "search",          "view"},
-              name, warnings, "");
+              name, warnings);
   Project project;
   Status status;
   auto check = [&](Status s) {
