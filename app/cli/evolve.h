@@ -33,6 +33,7 @@ struct EvolveArgs {
   double sigma = 0.0;
   int trials = 1;
   double trial_push = 0.3;
+  double robust_push = 0.0;
   int restart_after = 0;
   std::string resume;
   std::string out;

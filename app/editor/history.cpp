@@ -125,6 +125,8 @@ std::string describeChange(const app::Project& before, const app::Project& after
     changes.push_back("restart after " + std::to_string(b.restart_after) + " generations");
   if (a.trial_push_m_s != b.trial_push_m_s)
     changes.push_back("trial push " + number(b.trial_push_m_s) + " m/s");
+  if (a.robust_push_m_s != b.robust_push_m_s)
+    changes.push_back("pushes in every run " + number(b.robust_push_m_s) + " m/s");
   search::FitnessWeights wa = a.weights, wb = b.weights;
   for (int term = 0; term < search::kFitnessTermCount; ++term) {
     if (search::fitnessWeight(wa, term) != search::fitnessWeight(wb, term)) {

@@ -81,6 +81,7 @@ TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
   p.search.weights.energy = 0.01;
   p.search.trials = 3;
   p.search.trial_push_m_s = 0.45;
+  p.search.robust_push_m_s = 0.25;
   p.search.restart_after = 6;
   p.edits.band_gains[2][1] = 0.5;
   p.edits.styles.push_back({"tired", (test::sourceDir() / "assets" / "a.bvh").string(),

@@ -130,6 +130,38 @@ TEST(SearchProblem, TrialsAverageTheNominalAndThePushedRuns) {
   EXPECT_EQ(robust.terms.distance_m, nominal.terms.distance_m);
 }
 
+// Pushes in every run: four of 0.3 m/s of the body's mass, forward, left, back and right of the
+// reference direction at 15/35/55/75% of the window, after the user's own; the run that takes
+// them moves differently from the one that does not.
+TEST(SearchProblem, RobustPushesJoinEveryRun) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  Problem p = makeProblem(biped, 2.0);
+  p.simulation.pushes.push_back({0.5, {0.0, 0.0, 1.0}, ""});
+  const Problem unpushed = p;
+  EXPECT_FALSE(addRobustPushes(p, -0.1).ok());
+  EXPECT_FALSE(addRobustPushes(p, 10.5).ok());
+  ASSERT_TRUE(addRobustPushes(p, 0.0).ok());
+  EXPECT_EQ(p.simulation.pushes.size(), 1u);
+  ASSERT_TRUE(addRobustPushes(p, 0.3).ok());
+  ASSERT_EQ(p.simulation.pushes.size(), 5u);
+  const glm::dvec3 forward = p.reference_direction;
+  const glm::dvec3 left = glm::cross(glm::dvec3(0.0, 1.0, 0.0), forward);
+  const double impulse = 0.3 * p.plan.total_mass_kg;
+  const glm::dvec3 expected[4] = {forward, left, -forward, -left};
+  for (int k = 0; k < 4; ++k) {
+    const physics::Push& push = p.simulation.pushes[static_cast<size_t>(k + 1)];
+    EXPECT_NEAR(push.time_s, 2.0 * (0.15 + 0.2 * k), 1e-12) << k;
+    EXPECT_NEAR(glm::length(push.impulse_ns - impulse * expected[k]), 0.0, 1e-9) << k;
+    EXPECT_TRUE(push.link.empty());
+  }
+  const std::vector<double> x = p.layout.startPoint(1);
+  const Evaluation pushed = evaluate(p, x);
+  const Evaluation nominal = evaluate(unpushed, x);
+  std::printf("pushed %.3f, unpushed %.3f\n", pushed.terms.total, nominal.terms.total);
+  EXPECT_NE(pushed.terms.total, nominal.terms.total);
+}
+
 EvolveSettings small(int threads, int generations = 2) {
   EvolveSettings s;
   s.population = 6;

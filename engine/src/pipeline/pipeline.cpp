@@ -210,6 +210,8 @@ Result<SearchSetup> prepareSearch(const motion::Skeleton& skeleton, const motion
                                    settings.search.trial_push_m_s);
       !s.ok())
     return s;
+  if (Status s = search::addRobustPushes(problem.value(), settings.search.robust_push_m_s); !s.ok())
+    return s;
   return SearchSetup{std::move(problem).value(), std::move(tracked.value().what)};
 }
 

@@ -96,6 +96,8 @@ Status SearchSettings::validate() const {
     return Status::error("search.trials: must be 1.." + std::to_string(search::kMaxTrials));
   if (!(std::isfinite(trial_push_m_s) && trial_push_m_s > 0.0 && trial_push_m_s <= 10.0))
     return Status::error("search.trial_push_m_s: must be in (0, 10] m/s");
+  if (!(std::isfinite(robust_push_m_s) && robust_push_m_s >= 0.0 && robust_push_m_s <= 10.0))
+    return Status::error("search.robust_push_m_s: must be in [0, 10] m/s");
   if (restart_after < 0 || restart_after > 100000)
     return Status::error("search.restart_after: must be 0 (never) to 100000 generations");
   return Status();

@@ -391,6 +391,21 @@ Status setTrials(Problem& problem, int trials, double push_m_s) {
   return Status();
 }
 
+Status addRobustPushes(Problem& problem, double push_m_s) {
+  if (!(std::isfinite(push_m_s) && push_m_s >= 0.0 && push_m_s <= 10.0))
+    return Status::error("robust push: must be in [0, 10] m/s");
+  if (push_m_s == 0.0) return Status();
+  const glm::dvec3 forward = problem.reference_direction;
+  const glm::dvec3 left = glm::cross(glm::dvec3(0.0, 1.0, 0.0), forward);
+  const glm::dvec3 directions[4] = {forward, left, -forward, -left};
+  const double impulse = push_m_s * problem.plan.total_mass_kg;
+  for (int k = 0; k < 4; ++k) {
+    const double time = problem.simulation.seconds * (0.15 + 0.2 * k);
+    problem.simulation.pushes.push_back({time, impulse * directions[k], ""});
+  }
+  return Status();
+}
+
 namespace {
 
 // One run of a point's controller with these settings, scored; diverged runs cost +inf.

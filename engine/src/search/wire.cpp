@@ -147,9 +147,11 @@ std::uint64_t fingerprint(const Problem& problem) {
   mix(h, problem.simulation.seconds);
   FitnessWeights weights = problem.weights;
   for (int k = 0; k < kFitnessTermCount; ++k) mix(h, fitnessWeight(weights, k));
-  for (const physics::Push& push : problem.trial_pushes)
-    mix(h, push.time_s), mix(h, push.impulse_ns.x), mix(h, push.impulse_ns.y),
-        mix(h, push.impulse_ns.z);
+  for (const auto* pushes : {&problem.simulation.pushes, &problem.trial_pushes}) {
+    for (const physics::Push& push : *pushes)
+      mix(h, push.time_s), mix(h, push.impulse_ns.x), mix(h, push.impulse_ns.y),
+          mix(h, push.impulse_ns.z);
+  }
   return h;
 }
 

@@ -96,6 +96,8 @@ struct SearchSettings {
   int trials = 1;               // runs per point, 1..search::kMaxTrials: the nominal one and
                                 // trials - 1 pushed ones (search::setTrials); its cost the mean
   double trial_push_m_s = 0.3;  // the trials' pushes, per kg of body: m/s, (0, 10]
+  double robust_push_m_s = 0.0; // pushes inside every run, per kg of body: m/s, [0, 10]
+                                // (search::addRobustPushes); 0: none
   int restart_after = 0;        // CMA-ES: restart from the prior after this many generations
                                 // without a better best (search::EvolveSettings); 0: never
   bool operator==(const SearchSettings&) const = default;

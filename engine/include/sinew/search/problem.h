@@ -158,6 +158,12 @@ struct Problem {
 inline constexpr int kMaxTrials = 9;
 Status setTrials(Problem& problem, int trials, double push_m_s);
 
+// Robustness at no extra cost: adds to the run every point already makes four pushes on the
+// pelvis of push_m_s x body mass, along the reference direction at 15% of the window, to its
+// left at 35%, against it at 55% and to its right at 75% (1.5, 3.5, 5.5 and 7.5 s of a 10 s
+// window), so a controller is scored on walking through them. 0 adds none; at most 10 m/s.
+Status addRobustPushes(Problem& problem, double push_m_s);
+
 // Simulates one point and scores it. `cancel` ends it early (the result is then not a fitness:
 // `cancelled` set). `record`: keep the recorded motion in `report`.
 struct Evaluation {
