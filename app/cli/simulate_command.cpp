@@ -122,11 +122,12 @@ std::string controllerRig(const std::string& path) {
 // --balance CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO[,...] into the gains.
 Status applyBalanceFlag(const std::vector<double>& balance, physics::BalanceGains& b) {
   if (balance.size() != 5 && balance.size() != 8 && balance.size() != 9 && balance.size() != 12 &&
-      balance.size() != 13)
+      balance.size() != 13 && balance.size() != 14)
     return Status::error(
         "--balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO (or "
         "8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT, or 9, then HEADING, or 12, then "
-        "STANCE_SAGITTAL,STANCE_CORONAL,STANCE_VERTICAL, or 13, then STANCE_YAW), got " +
+        "STANCE_SAGITTAL,STANCE_CORONAL,STANCE_VERTICAL, or 13, then STANCE_YAW, or 14, then "
+        "STANCE_YIELD), got " +
         std::to_string(balance.size()));
   for (size_t i = 0; i < balance.size(); ++i) {
     const int g = static_cast<int>(i);
@@ -135,9 +136,8 @@ Status applyBalanceFlag(const std::vector<double>& balance, physics::BalanceGain
     const bool share = physics::balanceGainIsShare(g);
     if (share ? !(v >= 0.0 && v <= limit) : !(std::abs(v) <= limit))
       return Status::error("--balance: " + std::string(physics::balanceGainName(g)) + " (value " +
-                           std::to_string(i + 1) + ") must be " +
-                           (share ? (limit == 1.0 ? "a share from 0 to 1" : "from 0 to 0.1")
-                                  : "within +-100"));
+                           std::to_string(i + 1) + ") must be " + (share ? "a share " : "") +
+                           physics::balanceGainRule(g, search::kMaxBalanceGain));
     physics::balanceGain(b, g) = v;
   }
   return {};
@@ -322,7 +322,7 @@ void addSimulateCommand(CLI::App& app, int& exit_code) {
                    "(rad/m, rad/(m/s), rad/m, rad/(m/s), share 0..1), optionally then "
                    "ANKLE_SAGITTAL,ANKLE_CORONAL (rad/(m/s)),SWING_LIFT (per rig size, 0..0.1) "
                    "and then HEADING (share 0..1), then STANCE_SAGITTAL,STANCE_CORONAL,"
-                   "STANCE_VERTICAL (s), then STANCE_YAW (rad/rad)")
+                   "STANCE_VERTICAL (s), then STANCE_YAW (rad/rad), then STANCE_YIELD (share 0..0.9)")
       ->delimiter(',');
   command->add_flag("--from-standing", args->from_standing,
                     "Start standing at rest and blend into the motion over 1 s (default: start "

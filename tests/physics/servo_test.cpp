@@ -1,10 +1,12 @@
 // Joint servos (implicit PD solved with the contacts): convergence on every axis, torque limits,
 // and the standing criterion of the physics issue.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <span>
 
 #include <gtest/gtest.h>
 
@@ -86,6 +88,61 @@ TEST(Servo, EveryJointReachesItsTargetOnEveryAxis) {
   std::printf("every ball axis turned by 0.5 rad inside its range (the smallest turn %.2f rad)\n",
               smallest_turn);
   EXPECT_GE(smallest_turn, 0.2);
+}
+
+// A rate per link: two of the floating biped's hinges asked to turn 0.3 rad; given rates 0.2 and
+// 0.05 by setServoTargets, each closes in a step what it closes when the world's one rate is its
+// own (enableServos' 0.2, or 0.05) to within 15% (the two arms move each other through the
+// floating torso), and the slow one less than half as much.
+TEST(Servo, EachLinkClosesItsOwnRateOfTheError) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const BodyPlan& plan = biped.plan;
+  const LinkPose standing = standingPose(plan, biped.asset.skeleton);
+  std::vector<size_t> hinges;
+  for (size_t li = 1; li < plan.links.size(); ++li)
+    if (plan.links[li].type == JointType::kHinge) hinges.push_back(li);
+  ASSERT_GE(hinges.size(), 2u);
+  hinges.resize(2);
+  LinkPose target = standing;
+  for (size_t hinge : hinges) {  // towards the middle of the range, where there is room
+    const Link& link = plan.links[hinge];
+    const double way = standing.angles[hinge] < 0.5 * (link.hinge_lower + link.hinge_upper) ? 1.0 : -1.0;
+    target.angles[hinge] = standing.angles[hinge] + way * 0.3;
+  }
+  // The share of each hinge's error closed in one step: servos at `world_rate`, and `rates`.
+  auto closedInAStep = [&](double world_rate, std::span<const double> rates) {
+    WorldSettings floating;
+    floating.gravity_m_s2 = 0.0;
+    floating.place_on_ground = false;
+    floating.ground_height_m = -100.0;
+    std::unique_ptr<World> world = World::create(plan, standing, floating).value();
+    std::vector<double> limits(plan.links.size(), 1e5);  // the rate binds, not the torque
+    limits[0] = 0.0;
+    EXPECT_TRUE(world->enableServos(limits, world_rate).ok());
+    world->setServoTargets(target, rates);
+    std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+    world->step(zero);
+    const LinkPose now = world->jointPositions();
+    std::array<double, 2> closed{};
+    for (size_t k = 0; k < 2; ++k)
+      closed[k] = (now.angles[hinges[k]] - standing.angles[hinges[k]]) /
+                  (target.angles[hinges[k]] - standing.angles[hinges[k]]);
+    return closed;
+  };
+  std::vector<double> rates(plan.links.size(), 0.2);
+  rates[hinges[1]] = 0.05;
+  const std::array<double, 2> mixed = closedInAStep(0.2, rates);
+  const std::array<double, 2> fast = closedInAStep(0.2, {});
+  const std::array<double, 2> slow = closedInAStep(0.05, {});
+  std::printf("closed in a step: %s at rate 0.2 %.4f (the world's 0.2: %.4f), %s at 0.05 %.4f "
+              "(the world's 0.05: %.4f)\n",
+              plan.links[hinges[0]].name.c_str(), mixed[0], fast[0],
+              plan.links[hinges[1]].name.c_str(), mixed[1], slow[1]);
+  EXPECT_NEAR(mixed[0], fast[0], 0.15 * fast[0]);  // the arms move each other through the torso
+  EXPECT_NEAR(mixed[1], slow[1], 0.15 * slow[1]);
+  EXPECT_LT(mixed[1], 0.5 * mixed[0]);
+  EXPECT_GT(mixed[1], 0.0);
 }
 
 // The servos never apply more than their limits.

@@ -250,6 +250,57 @@ TEST(TrackingController, StanceYawTurnsThePlantedFeetAgainstTheHeadingError) {
   EXPECT_TRUE(front && hind) << "no front and hind foot down in 60 steps";
 }
 
+// stance_yield slows the servos of every leg whose foot is down, and of no other joint: step by
+// step through the biped's first half second, a planted foot and its leg's links (hip, knee) run at
+// servo_rate x (1 - yield), the swinging leg and the upper body at servo_rate; without the gain
+// the controller asks for no rates of its own.
+TEST(TrackingController, StanceYieldSlowsThePlantedLegsServosOnly) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const BodyPlan& plan = biped.plan;
+  const MotionState state = targetState(plan, biped.asset.skeleton, biped.target, 0.0);
+  std::unique_ptr<World> world = World::create(plan, state.pose).value();
+  std::unique_ptr<TrackingController> made = oneTermController(
+      *world, biped, state.pose, [](BalanceGains& g) { g.stance_yield = 0.75; });
+  ASSERT_TRUE(made);
+  TrackingController& controller = *made;
+  const std::vector<int> feet = footLinks(plan);
+  const double rate = TrackingSettings().servo_rate;
+  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
+  int planted_steps = 0, swing_steps = 0;
+  for (int k = 0; k < 120; ++k) {
+    controller.update(*world);
+    const std::vector<double>& rates = controller.servoRates();
+    ASSERT_EQ(rates.size(), plan.links.size());
+    std::vector<char> planted_leg(plan.links.size(), 0);
+    for (int foot : feet) {  // the foot, and its leg up to the link that carries another foot
+      if (world->linkContacts()[static_cast<size_t>(foot)] == 0) continue;
+      for (int li = foot; li > 0; li = plan.links[static_cast<size_t>(li)].parent) {
+        bool shared = false;
+        for (int other : feet) shared = shared || (other != foot && isAncestorLink(plan, li, other));
+        if (shared) break;
+        planted_leg[static_cast<size_t>(li)] = 1;
+      }
+    }
+    for (size_t li = 1; li < plan.links.size(); ++li)
+      EXPECT_DOUBLE_EQ(rates[li], planted_leg[li] ? rate * 0.25 : rate)
+          << plan.links[li].name << " at step " << k;
+    for (int foot : feet)
+      (world->linkContacts()[static_cast<size_t>(foot)] ? planted_steps : swing_steps) += 1;
+    world->step(zero);
+  }
+  std::printf("feet planted in %d foot-steps, in the air in %d\n", planted_steps, swing_steps);
+  EXPECT_GT(planted_steps, 0);
+  EXPECT_GT(swing_steps, 0);  // both cases were seen
+
+  std::unique_ptr<World> other = World::create(plan, state.pose).value();
+  std::unique_ptr<TrackingController> plain =
+      oneTermController(*other, biped, state.pose, [](BalanceGains&) {});
+  ASSERT_TRUE(plain);
+  plain->update(*other);
+  EXPECT_TRUE(plain->servoRates().empty());
+}
+
 // The motion the feedback compares the body with is the target's whole pose, its travel
 // included: the reference centre of mass moves at the clip's speed (it stood still before, so
 // the velocity gains saw the whole walking speed as an error).

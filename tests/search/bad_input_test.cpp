@@ -63,7 +63,7 @@ TEST(SearchBadInput, ControllerFilesGiveOneLineNamingTheField) {
 }
 
 // The gains added after version 1's first files (ankle_sagittal, ankle_coronal, swing_lift,
-// heading, the stance gains): saved and read back; a file without them was made without them and
+// heading, the stance gains, the stance yield): saved and read back; a file without them was made without them and
 // replays with them off; a lift beyond its range is refused naming the field.
 TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   const physics::test_util::Character c = biped();
@@ -76,6 +76,7 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
         j["balance"]["heading"] = 0.7;
         j["balance"]["stance_vertical"] = -0.04;
         j["balance"]["stance_yaw"] = 0.6;
+        j["balance"]["stance_yield"] = 0.45;
       },
       dir);
   ASSERT_TRUE(same.ok()) << same.message();
@@ -85,12 +86,13 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   EXPECT_EQ(same.value().balance.heading, 0.7);
   EXPECT_EQ(same.value().balance.stance_vertical, -0.04);
   EXPECT_EQ(same.value().balance.stance_yaw, 0.6);
+  EXPECT_EQ(same.value().balance.stance_yield, 0.45);
   Result<ControllerFile> older = editedController(
       c,
       [](nlohmann::json& j) {
         for (const char* key : {"ankle_sagittal", "ankle_coronal", "swing_lift", "heading",
                                 "stance_sagittal", "stance_coronal", "stance_vertical",
-                                "stance_yaw"})
+                                "stance_yaw", "stance_yield"})
           j["balance"].erase(key);
       },
       dir);
@@ -101,11 +103,16 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   EXPECT_EQ(older.value().balance.heading, 0.0);
   EXPECT_EQ(older.value().balance.stance_vertical, 0.0);
   EXPECT_EQ(older.value().balance.stance_yaw, 0.0);
+  EXPECT_EQ(older.value().balance.stance_yield, 0.0);
   EXPECT_EQ(older.value().balance.torso, physics::BalanceGains{}.torso);
   Result<ControllerFile> high = editedController(
       c, [](nlohmann::json& j) { j["balance"]["swing_lift"] = 0.5; }, dir);
   EXPECT_EQ(high.message(),
             (dir / "edited.json").string() + ": balance: swing_lift: expected a share from 0 to 0.1");
+  Result<ControllerFile> stiff = editedController(
+      c, [](nlohmann::json& j) { j["balance"]["stance_yield"] = 1.0; }, dir);
+  EXPECT_EQ(stiff.message(), (dir / "edited.json").string() +
+                                 ": balance: stance_yield: expected a share from 0 to 0.9");
 }
 
 // Paths are bytes: a Latin-1 rig or clip path comes back as the same bytes (core's path_json, the

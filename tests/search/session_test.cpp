@@ -54,8 +54,9 @@ TEST(SearchGenome, ThePriorPointIsTheAnalysedMotion) {
       EXPECT_NEAR(decoded.channels[c].terms[t].phase, biped.target.channels[c].terms[t].phase, 1e-12);
     }
   }
-  // The start holds the default gains, every one of them.
+  // The start holds the default gains, every one of them, but the stance yield (from 0.5).
   physics::BalanceGains gains = layout.decodeGains(x), defaults;
+  defaults.stance_yield = 0.5;
   for (int g = 0; g < physics::kBalanceGainCount; ++g)
     EXPECT_NEAR(physics::balanceGain(gains, g), physics::balanceGain(defaults, g), 1e-12)
         << physics::balanceGainName(g);

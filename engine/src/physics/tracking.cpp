@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -302,7 +303,7 @@ const char* balanceGainName(int i) {
       "cd_sagittal", "cv_sagittal",   "cd_coronal",    "cv_coronal",
       "torso",       "ankle_sagittal", "ankle_coronal", "swing_lift",
       "heading",     "stance_sagittal", "stance_coronal", "stance_vertical",
-      "stance_yaw"};
+      "stance_yaw",  "stance_yield"};
   return kNames[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
@@ -311,14 +312,27 @@ double& balanceGain(BalanceGains& g, int i) {
                                              &g.cv_coronal,  &g.torso,         &g.ankle_sagittal,
                                              &g.ankle_coronal, &g.swing_lift,  &g.heading,
                                              &g.stance_sagittal, &g.stance_coronal,
-                                             &g.stance_vertical, &g.stance_yaw};
+                                             &g.stance_vertical, &g.stance_yaw,
+                                             &g.stance_yield};
   return *fields[std::clamp(i, 0, kBalanceGainCount - 1)];
 }
 
-bool balanceGainIsShare(int i) { return i == 4 || i == 7 || i == 8; }
+bool balanceGainIsShare(int i) { return i == 4 || i == 7 || i == 8 || i == 13; }
 
 double balanceGainLimit(int i, double signed_limit) {
-  return i == 4 || i == 8 ? 1.0 : (i == 7 ? 0.1 : signed_limit);
+  switch (i) {
+    case 4: case 8: return 1.0;  // torso, heading
+    case 7: return 0.1;          // swing_lift, per rig size
+    case 13: return 0.9;         // stance_yield: a planted leg's servos keep a tenth of their rate
+    default: return signed_limit;
+  }
+}
+
+std::string balanceGainRule(int i, double signed_limit) {
+  char text[64];
+  std::snprintf(text, sizeof(text), balanceGainIsShare(i) ? "from 0 to %g" : "within +-%g",
+                balanceGainLimit(i, signed_limit));
+  return text;
 }
 
 Status TrackingSettings::validate() const {
@@ -333,9 +347,8 @@ Status TrackingSettings::validate() const {
     const double g = balanceGain(b, i);
     const double limit = balanceGainLimit(i, std::numeric_limits<double>::max());
     if (!(std::isfinite(g) && std::abs(g) <= limit && (g >= 0.0 || !balanceGainIsShare(i))))
-      return Status::error(std::string("balance.") + balanceGainName(i) +
-                           (balanceGainIsShare(i) ? " must be in [0, " + std::to_string(limit) + "]"
-                                                  : " must be finite"));
+      return Status::error(std::string("balance.") + balanceGainName(i) + " must be " +
+                           (balanceGainIsShare(i) ? balanceGainRule(i, limit) : "finite"));
   }
   return Status();
 }
@@ -531,7 +544,22 @@ void TrackingController::update(World& world) {
     have_reference_ = true;
   }
   if (settings_.feedback && balance_) applyFeedback(world);
-  world.setServoTargets(target_);
+  setServoRates(world);
+  world.setServoTargets(target_, servo_rates_);
+}
+
+void TrackingController::setServoRates(const World& world) {
+  const double yield = settings_.balance.stance_yield;
+  servo_rates_.clear();
+  if (!(settings_.feedback && balance_) || yield <= 0.0) return;
+  const std::vector<std::uint8_t>& contacts = world.linkContacts();
+  servo_rates_.assign(plan_->links.size(), settings_.servo_rate);
+  for (size_t f = 0; f < feet_.size(); ++f) {
+    const size_t foot = static_cast<size_t>(feet_[f]);
+    if (contacts[foot] == 0) continue;
+    servo_rates_[foot] = settings_.servo_rate * (1.0 - yield);
+    for (int li : legs_[f]) servo_rates_[static_cast<size_t>(li)] = servo_rates_[foot];
+  }
 }
 
 void TrackingController::referenceKinematics() {

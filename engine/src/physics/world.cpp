@@ -616,24 +616,27 @@ Status World::enableServos(std::span<const double> max_torque_nm, double rate) {
   return Status();
 }
 
-void World::setServoTargets(const LinkPose& target) {
+void World::setServoTargets(const LinkPose& target, std::span<const double> rates) {
   Impl& w = *impl_;
-  const double spherical_gain = w.servo_rate / w.world->getSolverInfo().m_erp;
+  const bool per_link = rates.size() == w.servos.size();
+  const double erp = w.world->getSolverInfo().m_erp;
   for (size_t li = 1; li < w.servos.size(); ++li) {
     btMultiBodyConstraint* servo = w.servos[li].get();
     if (servo == nullptr) continue;
     const Link& link = w.plan.links[li];
+    const double rate =
+        per_link && rates[li] > 0.0 && rates[li] <= 1.0 ? rates[li] : w.servo_rate;
     // A target outside the joint's range is unreachable: the servo aims at the range's nearest
     // point instead of pushing into the limit with all its torque (a fight the solver's few
     // iterations settle past the limit).
     if (link.type == JointType::kBall) {
       auto* motor = static_cast<btMultiBodySphericalJointMotor*>(servo);
       const glm::dquat q = clampToBallRange(link, glm::normalize(target.rotations[li]));
-      motor->setPositionTarget(toBt(q), spherical_gain);
+      motor->setPositionTarget(toBt(q), rate / erp);
     } else {
       auto* motor = static_cast<btMultiBodyJointMotor*>(servo);
       motor->setPositionTarget(std::clamp(target.angles[li], link.hinge_lower, link.hinge_upper),
-                               w.servo_rate);
+                               rate);
       motor->setVelocityTarget(0.0, 1.0);
     }
   }

@@ -48,7 +48,7 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
 namespace {
 
 // The first five gains are required; the ankle gains, swing_lift, heading and the stance gains
-// (stance_yaw last) came later: a file without them was made without them, and replays so (0).
+// (stance_yaw, then stance_yield) came later: a file without them was made without them, and replays so (0).
 Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
   using namespace state_json;
   Result<const nlohmann::json*> b = field(json, "balance", name);
@@ -67,8 +67,8 @@ Status readBalance(const nlohmann::json& json, const std::string& name, Controll
     if (Status s = readNumber(*b.value(), key, where, gain); !s.ok()) return s;
     const double limit = physics::balanceGainLimit(i, kMaxBalanceGain);
     if (physics::balanceGainIsShare(i) && !(gain >= 0.0 && gain <= limit))
-      return Status::error(where + ": " + key + ": expected a share from 0 to " +
-                           (limit == 1.0 ? std::string("1") : std::string("0.1")));
+      return Status::error(where + ": " + key + ": expected a share " +
+                           physics::balanceGainRule(i, kMaxBalanceGain));
     if (!physics::balanceGainIsShare(i) && !(std::abs(gain) <= limit))
       return Status::error(where + ": " + key + ": beyond the limit of +-100");
   }

@@ -29,6 +29,7 @@
 
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -113,16 +114,25 @@ struct BalanceGains {
   // moment a body with small feet has no other way to make. Radians per radian; the search tunes
   // it for characters with two or more leg pairs only, like `heading`.
   double stance_yaw = 0.0;
+  // Share by which the servos of every leg whose foot is down (its links and the foot) run slower
+  // than `servo_rate` (x (1 - share)), [0, 0.9]: a landing leg gives and extends with its target
+  // instead of being driven straight back to it at up to its torque limit (a strut that turns a
+  // run's forward speed into flight: docs/physics.md "The stance yield").
+  // Off (0) here; the search starts it at 0.5 for a character with one leg pair (or one leg that
+  // balances alone), at 0 for one with more (search::GenomeLayout).
+  double stance_yield = 0.0;
 };
 
 // The gains by index, in the order files and the genome hold them.
-inline constexpr int kBalanceGainCount = 13;
-const char* balanceGainName(int i);  // "cd_sagittal", ..., "heading", ..., "stance_yaw"
+inline constexpr int kBalanceGainCount = 14;
+const char* balanceGainName(int i);  // "cd_sagittal", ..., "heading", ..., "stance_yield"
 double& balanceGain(BalanceGains& gains, int i);
 // The largest value gain i may take, and whether it is a share from 0 (torso, swing_lift,
-// heading) rather than signed.
+// heading, stance_yield) rather than signed.
 double balanceGainLimit(int i, double signed_limit);
 bool balanceGainIsShare(int i);
+// What gain i must be, for messages: "from 0 to 0.9" for a share, "within +-100" otherwise.
+std::string balanceGainRule(int i, double signed_limit);
 
 struct TrackingSettings {
   double servo_rate = 0.2;             // World::enableServos rate, (0, 1]
@@ -187,6 +197,9 @@ class TrackingController {
   const std::vector<int>& feet() const { return feet_; }  // foot links
   // (feet) when the target lifts and lands each foot within its period
   const std::vector<FootCycle>& footCycles() const { return cycles_; }
+  // (links) each servo's rate in the last update: `servo_rate`, times (1 - stance_yield) on the
+  // legs whose foot is down; empty (every servo at the world's rate) with no yield or feedback.
+  const std::vector<double>& servoRates() const { return servo_rates_; }
 
  private:
   TrackingController() = default;
@@ -208,6 +221,7 @@ class TrackingController {
   void driveStanceLegs(const LegPair& pair, const std::vector<std::uint8_t>& contacts,
                        const glm::dvec3& velocity_error, double heading_target,
                        double heading_error);
+  void setServoRates(const World& world);  // servo_rates_ for this step
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
   void setForward(const spectral::TargetMotion& target);  // every pair's forward_local
 
@@ -230,6 +244,7 @@ class TrackingController {
   bool have_reference_ = false;
   std::vector<FootCycle> cycles_;     // (feet)
   std::vector<std::vector<int>> legs_;  // (feet) the links a foot's lift moves, top to bottom
+  std::vector<double> servo_rates_;     // (links) see servoRates()
 };
 
 // When each foot of `feet` (links) leaves the ground and comes down again within the target's

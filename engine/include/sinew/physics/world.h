@@ -105,8 +105,11 @@ class World {
   // at the current pose. `max_torque_nm` (links): 0 leaves a joint unactuated.
   Status enableServos(std::span<const double> max_torque_nm, double rate);
   // A target outside a joint's range is moved to the range's nearest point (hinges: the angle
-  // clamped; balls: clampToBallRange), which the servo can reach.
-  void setServoTargets(const LinkPose& target);
+  // clamped; balls: clampToBallRange), which the servo can reach. `rates` (links, each in
+  // (0, 1]): the share of its error each joint's servo closes this step instead of
+  // enableServos' rate; empty (or not one per link): that rate for every joint, as for an
+  // entry outside (0, 1].
+  void setServoTargets(const LinkPose& target, std::span<const double> rates = {});
   // Torques the servos applied in the last step (dofs, N m, each joint's frame).
   void servoTorques(std::span<double> out) const;
   // Each servo's torque limit (links, N m, per axis; 0 for a joint without one), as

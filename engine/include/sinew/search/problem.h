@@ -5,15 +5,17 @@
 // Genome (GenomeLayout). For every rotation channel of a joint that moves a body (a joint in some
 // link's chain, or the base's), in the seed target's channel order: the offset A, then (B_n, D_n)
 // for each kept harmonic; then omega_0; then the balance gains (physics::balanceGainName order;
-// `heading` only for characters with two or more leg pairs, from 1; a character with no leg pair,
-// which has no balance feedback, only `swing_lift`). Coordinate x in [0, 1] maps
+// `heading` only for characters with two or more leg pairs, from 1; `stance_yield` from 0.5 with
+// one leg pair, else from 0; a character with no leg pair, which has no balance feedback, only
+// `swing_lift`). Coordinate x in [0, 1] maps
 //   A     = A0 + (2x - 1) offset_range_rad
 //   B     = B0 * amplitude_factor^(2x - 1)              (x = 0.5: B0; never negative; a prior
 //           below 1e-4 rad gets the linear range [0, 1e-4 amplitude_factor] instead)
 //   D     = D0 + (2x - 1) phase_range_rad
 //   omega = omega0 * (1 + (2x - 1) omega_range)
 //   gains = lo + x (hi - lo)  (cd, cv, the ankle and the stance gains in [-gain_range,
-//           gain_range]; torso and heading in [0, 1]; swing_lift in [0, 0.05])
+//           gain_range]; torso and heading in [0, 1]; swing_lift in [0, 0.05];
+//           stance_yield in [0, 0.9])
 // so the seed point (the DFT prior) is x = 0.5 for the coefficients and the defaults' place for
 // the gains. No prior (`no_prior`): the same structure (channels, harmonic numbers) but generic
 // ranges that know nothing of the clip: base rotations at the rig's rest pose, A in +-1 rad,
