@@ -4,7 +4,8 @@
 # replayed for 10 s and for 30 s. Prints a Markdown table (docs/physics.md keeps one):
 #   clip, links, DOF, mass, stood up (10 s replay, 30 s replay), distance, speed vs the clip's,
 #   tracking error against the clip's model (and against the evolved target), evaluations, wall
-#   time, why it fell.
+#   time, push robustness (bench/push_robustness.py: the largest impulse held at every moment of
+#   a stride, and at 2 s; how many of 20 pushes of 40 N s were held), why it fell.
 # A long experiment, not a test: 13 clips x M minutes (M=5: about 70 minutes on 2 cores) per seed.
 #   [SEEDS="1 2 ..."] bench/real_physics_bench.sh [SINEW_BINARY] [MINUTES] [OUT_DIR] [CLIP...]
 # EVOLVE_ARGS (default none): more `sinew evolve` options for every search, e.g.
@@ -32,8 +33,8 @@ if [ ${#clips[@]} -eq 0 ]; then
           "$root/assets/hopper_hop.bvh" "$root/assets/stepper_step.bvh")
 fi
 mkdir -p "$out"
-echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg: clip (own target) | evaluations | wall s | push N s fwd/back/left/right | fell because |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | speed m/s (clip) | tracking deg: clip (own target) | evaluations | wall s | push N s f/b/l/r: every moment (at 2 s) | 40 N s held | fell because |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 read -r -a seeds <<< "${SEEDS:-1}"
 read -r -a evolve_args <<< "${EVOLVE_ARGS:-}"
 for clip in "${clips[@]}"; do
@@ -47,16 +48,16 @@ for seed in "${seeds[@]}"; do
   start=$(date +%s.%N)
   "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed "$seed" --out "$dir" \
       "${evolve_args[@]}" > "$dir.evolve.log" 2>&1 || {
-    echo "| $name | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$dir.evolve.log") |"
+    echo "| $name | - | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$dir.evolve.log") |"
     continue
   }
   wall=$(python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.0f}')" "$start" "$(date +%s.%N)")
   "$sinew" simulate --rig "$clip" --controller "$dir/best.json" --seconds 10 --json "$dir/replay10.json" > "$dir.replay10.log" 2>&1
   "$sinew" simulate --rig "$clip" --controller "$dir/best.json" --seconds 30 --json "$dir/replay30.json" > "$dir.replay30.log" 2>&1
   "$sinew" analyze "$clip" --json "$dir/analysis.json" > /dev/null 2>&1 || true
-  python3 - "$name" "$dir" "$wall" "$sinew" "$clip" <<'PY'
+  python3 - "$name" "$dir" "$wall" "$sinew" "$clip" "$root/bench/push_robustness.py" <<'PY'
 import json, re, subprocess, sys
-name, d, wall, sinew, clip = sys.argv[1:6]
+name, d, wall, sinew, clip, push_script = sys.argv[1:7]
 r10 = json.load(open(f"{d}/replay10.json"))
 r30 = json.load(open(f"{d}/replay30.json"))
 head = open(f"{d}.replay10.log").readline()
@@ -72,31 +73,18 @@ try:
     clip_speed = f"{(v[0] ** 2 + v[2] ** 2) ** 0.5:.2f}"
 except Exception:
     pass
-# Push robustness: the largest impulse on the pelvis at 2 s, along the clip's travel, against
-# it and to each side, after which the replay keeps walking 3 s (of 10, 20, 40, 60, 80 N s).
-pushes = "-"
+# Push robustness (bench/push_robustness.py): per direction, the largest impulse on the pelvis
+# held at all five moments of a stride from 2 s, and at 2 s alone; and how many of the 20 pushes
+# of 40 N s were held. Walks that stay up 10 s only.
+pushes, at_aim = "-", "-"
 if not r10["fell"]:
-    try:
-        v = json.load(open(f"{d}/analysis.json"))["travel_velocity_m_s"]
-        n = (v[0] ** 2 + v[2] ** 2) ** 0.5
-        fwd = (v[0] / n, v[2] / n) if n > 0.05 else (0.0, 1.0)
-    except Exception:
-        fwd = (0.0, 1.0)
-    best = []
-    for dx, dz in [fwd, (-fwd[0], -fwd[1]), (fwd[1], -fwd[0]), (-fwd[1], fwd[0])]:
-        held = 0
-        for j in [10, 20, 40, 60, 80]:
-            out = subprocess.run([sinew, "simulate", "--rig", clip, "--controller", f"{d}/best.json",
-                                  "--seconds", "5", "--push", f"2,{dx * j:.3f},0,{dz * j:.3f}",
-                                  "--json", f"{d}/push.json"], capture_output=True)
-            if out.returncode != 0 or json.load(open(f"{d}/push.json"))["fell"]:
-                break
-            held = j
-        best.append(str(held))
-    pushes = "/".join(best)
+    out = subprocess.run([sys.executable, push_script, sinew, clip, f"{d}/best.json", f"{d}/analysis.json"],
+                         capture_output=True, text=True).stdout.split()
+    if len(out) == 3:
+        pushes, at_aim = f"{out[0]} ({out[1]})", out[2]
 print(f"| {name} | {links} | {dof} | {mass} | {r10['seconds']:.1f} s | {r30['seconds']:.1f} s | "
       f"{r10['distance_m']:.1f} | {r10['speed_m_s']:.2f} ({clip_speed}) | "
-      f"{clip_track:.1f} ({r10['track_err_rad_rms'] * 57.29578:.1f}) | {evals.group(1) if evals else '?'} | {wall} | {pushes} | "
+      f"{clip_track:.1f} ({r10['track_err_rad_rms'] * 57.29578:.1f}) | {evals.group(1) if evals else '?'} | {wall} | {pushes} | {at_aim} | "
       f"{r10.get('fall_reason', '') if r10['fell'] else '-'} |")
 PY
 done
