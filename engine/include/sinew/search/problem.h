@@ -5,8 +5,8 @@
 // Genome (GenomeLayout). For every rotation channel of a joint that moves a body (a joint in some
 // link's chain, or the base's), in the seed target's channel order: the offset A, then (B_n, D_n)
 // for each kept harmonic; then omega_0; then the balance gains (physics::balanceGainName order;
-// `heading` only for characters with two or more leg pairs, from 1; `stance_yield` from 0.5 with
-// one leg pair, else from 0; a character with no leg pair, which has no balance feedback, only
+// `heading` only for characters with two or more leg pairs, from 1; `stance_yield` from 0, as
+// every other gain from its default; a character with no leg pair (no balance feedback): only
 // `swing_lift`). Coordinate x in [0, 1] maps
 //   A     = A0 + (2x - 1) offset_range_rad
 //   B     = B0 * amplitude_factor^(2x - 1)              (x = 0.5: B0; never negative; a prior
