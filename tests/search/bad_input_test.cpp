@@ -63,8 +63,8 @@ TEST(SearchBadInput, ControllerFilesGiveOneLineNamingTheField) {
 }
 
 // The gains added after version 1's first files (ankle_sagittal, ankle_coronal, swing_lift,
-// heading, the stance gains, the stance yield): saved and read back; a file without them was made without them and
-// replays with them off; a lift beyond its range is refused naming the field.
+// heading, the stance gains, the stance yield): saved and read back; a file without them replays
+// with them off; a lift or a yield beyond its range is refused naming the field.
 TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
   const physics::test_util::Character c = biped();
   test::TempDir dir;

@@ -48,7 +48,7 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
 namespace {
 
 // The first five gains are required; the ankle gains, swing_lift, heading and the stance gains
-// (stance_yaw, then stance_yield) came later: a file without them was made without them, and replays so (0).
+// (stance_yaw, then stance_yield) came later: a file without them replays with them off (0).
 Status readBalance(const nlohmann::json& json, const std::string& name, ControllerFile& c) {
   using namespace state_json;
   Result<const nlohmann::json*> b = field(json, "balance", name);
