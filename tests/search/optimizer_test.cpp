@@ -15,6 +15,7 @@
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
 #include "sinew/search/optimizer.h"
+#include "sinew/search/portfolio.h"
 #include "sinew/search/random.h"
 
 namespace sinew::search {
@@ -640,6 +641,162 @@ TEST(SearchFailures, NanAndInfiniteCostsRankLastAndBreakNothing) {
     // A state with failed costs in it saves and loads.
     EXPECT_TRUE(Optimizer::load(json::parse(o->saveState().dump())).ok()) << name;
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Portfolio: several starts tried in turn, the best going on
+
+// Two CMA-ES runs (one seed) from the given starts, tried `trial` generations each.
+std::unique_ptr<Portfolio> portfolio(const std::vector<Point>& starts, int trial,
+                                     std::uint64_t seed = 1) {
+  std::vector<std::unique_ptr<Optimizer>> members;
+  for (const Point& start : starts) {
+    CmaesSettings s;
+    s.initial_mean = start;
+    s.initial_sigma = 0.05;
+    s.seed = seed;
+    members.push_back(cmaes(static_cast<int>(start.size()), s));
+  }
+  Result<std::unique_ptr<Portfolio>> p = Portfolio::create(std::move(members), trial);
+  EXPECT_TRUE(p.ok()) << p.message();
+  return std::move(p).value();
+}
+
+// The start near the optimum wins whichever place it has, each member's trial is the run a
+// search from its start alone would make (bit for bit), and the winner goes on as it would alone.
+TEST(SearchPortfolio, TriesEachStartInTurnThenKeepsTheBest) {
+  const int n = 6;
+  const Point optimum(n, 0.8);
+  const CostFunction f = sphere(optimum);
+  const Point far(n, 0.1), near(n, 0.7);
+  for (const bool near_first : {false, true}) {
+    const std::vector<Point> starts = near_first ? std::vector<Point>{near, far}
+                                                 : std::vector<Point>{far, near};
+    std::unique_ptr<Portfolio> p = portfolio(starts, 10);
+    std::unique_ptr<Cmaes> alone[2];
+    for (int m = 0; m < 2; ++m) {
+      CmaesSettings s;
+      s.initial_mean = starts[static_cast<size_t>(m)];
+      s.initial_sigma = 0.05;
+      s.seed = 1;
+      alone[m] = cmaes(n, s);
+    }
+    for (int g = 0; g < 20; ++g) {
+      const int m = g < 10 ? 0 : 1;
+      EXPECT_EQ(p->current(), m) << "generation " << g;
+      EXPECT_EQ(p->chosen(), -1) << "generation " << g;
+      EXPECT_EQ(p->ask(), alone[m]->ask()) << "generation " << g;
+      step(*p, f);
+      step(*alone[m], f);
+    }
+    const int winner = near_first ? 0 : 1;
+    EXPECT_EQ(p->chosen(), winner) << near_first;
+    EXPECT_EQ(p->current(), winner);
+    EXPECT_LT(p->member(winner).bestCost(), p->member(1 - winner).bestCost());
+    EXPECT_EQ(p->bestCost(), p->member(winner).bestCost());
+    for (int g = 0; g < 15; ++g) {
+      EXPECT_EQ(p->ask(), alone[winner]->ask()) << "after the choice, generation " << g;
+      step(*p, f);
+      step(*alone[winner], f);
+    }
+    EXPECT_EQ(p->generation(), 35);
+    EXPECT_EQ(p->evaluations(), 35LL * p->population());
+    EXPECT_EQ(p->bestCost(), alone[winner]->bestCost());
+  }
+}
+
+// keep() ends the trials at once: the member goes on alone, the others are never asked.
+TEST(SearchPortfolio, KeepEndsTheTrialsWithTheMemberItNames) {
+  const int n = 4;
+  const CostFunction f = sphere(Point(n, 0.6));
+  std::unique_ptr<Portfolio> p = portfolio({Point(n, 0.5), Point(n, 0.2)}, 10);
+  CmaesSettings s;
+  s.initial_mean = Point(n, 0.5);
+  s.initial_sigma = 0.05;
+  std::unique_ptr<Cmaes> alone = cmaes(n, s);
+  for (int g = 0; g < 3; ++g) {
+    step(*p, f);
+    step(*alone, f);
+  }
+  p->keep(0);
+  EXPECT_EQ(p->chosen(), 0);
+  for (int g = 0; g < 20; ++g) {
+    EXPECT_EQ(p->current(), 0);
+    EXPECT_EQ(p->ask(), alone->ask()) << g;
+    step(*p, f);
+    step(*alone, f);
+  }
+  EXPECT_EQ(p->member(1).generation(), 0);
+  EXPECT_EQ(p->bestCost(), alone->bestCost());
+}
+
+// Deterministic, and a checkpoint taken within a trial resumes through the choice to the same
+// state as the uninterrupted run (the generic checks of every optimiser, with trials of 8: the
+// checkpoint at generation 12 is within the second member's trial, the choice comes at 16).
+TEST(SearchPortfolio, DeterministicAndCheckpointsAreSeamless) {
+  const int n = 5;
+  const CostFunction f = rastrigin(shiftedOptimum(n));
+  const Factory make = [n](std::uint64_t seed) -> std::unique_ptr<Optimizer> {
+    return portfolio({Point(n, 0.5), Point(n, 0.3)}, 8, seed);
+  };
+  expectDeterministic(make, f, "portfolio");
+  expectCheckpointIsSeamless(make, f, "portfolio");
+}
+
+TEST(SearchPortfolio, BadMembersAndCorruptedStatesAreRefused) {
+  const int n = 3;
+  auto members = [](std::vector<int> dimensions) {
+    std::vector<std::unique_ptr<Optimizer>> m;
+    for (int d : dimensions) m.push_back(cmaes(d));
+    return m;
+  };
+  auto refusedCreate = [](std::vector<std::unique_ptr<Optimizer>> m, int trial,
+                          const std::string& why) {
+    Result<std::unique_ptr<Portfolio>> p = Portfolio::create(std::move(m), trial);
+    EXPECT_FALSE(p.ok()) << why;
+    EXPECT_NE(p.message().find(why), std::string::npos) << p.message();
+  };
+  refusedCreate(members({n}), 5, "expected 2 to 8 members, got 1");
+  refusedCreate(members({n, n + 1}), 5, "member 1 has 4 coordinates");
+  refusedCreate(members({n, n}), 0, "trial_generations");
+  std::vector<std::unique_ptr<Optimizer>> told = members({n, n});
+  step(*told[1], sphere(Point(n, 0.5)));
+  refusedCreate(std::move(told), 5, "member 1 has been told generations already");
+
+  std::unique_ptr<Portfolio> p = portfolio({Point(n, 0.5), Point(n, 0.4)}, 2);
+  for (int g = 0; g < 3; ++g) step(*p, sphere(Point(n, 0.6)));
+  const json state = p->saveState();
+  EXPECT_EQ(state["kind"], "portfolio");
+  ASSERT_TRUE(Optimizer::load(state).ok());
+  auto refused = [](const json& s, const std::string& field) {
+    Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(s);
+    EXPECT_FALSE(loaded.ok()) << field;
+    EXPECT_NE(loaded.message().find(field), std::string::npos) << loaded.message();
+  };
+  json s = state;
+  s.erase("members");
+  refused(s, "members: missing");
+  s = state;
+  s["members"].erase(0);
+  refused(s, "expected 2 to 8 members, got 1");
+  s = state;
+  s["members"][1]["sigma"] = -1.0;
+  refused(s, "members[1]: optimizer state: sigma");
+  s = state;
+  s["members"][0] = state;
+  refused(s, "members[0]: a portfolio cannot hold a portfolio");
+  s = state;
+  s["current"] = 2;
+  refused(s, "current");
+  s = state;
+  s["chosen"] = 0;
+  refused(s, "chosen: the chosen member is the one asking");
+  s = state;
+  s["points"] = s["members"][0]["points"];
+  refused(s, "points: not the current member's");
+  s = state;
+  s["dimension"] = 4;
+  refused(s, "dimension");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
+#include "sinew/search/portfolio.h"
 #include "state_json.h"
 
 namespace sinew::search {
@@ -117,7 +118,13 @@ Result<std::unique_ptr<Optimizer>> Optimizer::load(const json& state) {
     if (!genetic.ok()) return genetic.status();
     return std::unique_ptr<Optimizer>(std::move(genetic).value());
   }
-  return Status::error(where + ": kind: expected \"cmaes\" or \"genetic\", found \"" + kind + "\"");
+  if (kind == "portfolio") {
+    Result<std::unique_ptr<Portfolio>> portfolio = Portfolio::load(state);
+    if (!portfolio.ok()) return portfolio.status();
+    return std::unique_ptr<Optimizer>(std::move(portfolio).value());
+  }
+  return Status::error(where + ": kind: expected \"cmaes\", \"genetic\" or \"portfolio\", found \"" +
+                       kind + "\"");
 }
 
 }  // namespace sinew::search

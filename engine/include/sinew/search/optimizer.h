@@ -36,7 +36,7 @@ class Optimizer {
   Optimizer(const Optimizer&) = delete;
   Optimizer& operator=(const Optimizer&) = delete;
 
-  virtual const char* kind() const = 0;  // the state's "kind": "cmaes" or "genetic"
+  virtual const char* kind() const = 0;  // the state's "kind": "cmaes", "genetic", "portfolio"
 
   int dimension() const { return dimension_; }  // coordinates per point, >= 1
   // Points in the current generation (it may change between generations: IPOP restarts).
