@@ -35,6 +35,7 @@ struct EvolveArgs {
   double trial_push = 0.3;
   double robust_push = 0.0;
   int restart_after = 0;
+  int start_generations = 50;
   std::string resume;
   std::string out;
   std::string batch;     // --batch LIST_OR_FOLDER: many clips, one search each

@@ -128,6 +128,7 @@ Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
   if (args.has("--trial-push")) s.search.trial_push_m_s = args.trial_push;
   if (args.has("--robust-push")) s.search.robust_push_m_s = args.robust_push;
   if (args.has("--restart-after")) s.search.restart_after = args.restart_after;
+  if (args.has("--start-generations")) s.search.start_generations = args.start_generations;
   if (args.has("--optimizer")) {
     Result<search::OptimizerKind> kind = search::optimizerFromName(args.optimizer);
     if (!kind.ok()) return Status::error("--optimizer: " + kind.message());
@@ -286,6 +287,7 @@ bool runWithProgress(search::Session& session, const std::function<void()>& each
   session.start();
   int printed = static_cast<int>(session.snapshot()->history.size());
   bool interrupted = false;
+  std::string start;  // the start the search is on, as last printed
   for (;;) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     if (g_interrupted && !interrupted) {
@@ -318,6 +320,10 @@ bool runWithProgress(search::Session& session, const std::function<void()>& each
                     diverged.c_str());
       std::fflush(stdout);
       each_generation();
+    }
+    if (snap->start != start) {  // the search moved to another start, or kept one
+      start = snap->start;
+      std::printf("search: %s\n", start.c_str());
     }
     if (search::ended(snap->state)) break;
   }
@@ -556,6 +562,12 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
                    "without a better best (default 0: never)")
       ->check(wholeNumber())
       ->check(CLI::Range(0, 100000));
+  command
+      ->add_option("--start-generations", args->start_generations,
+                   "Try each start (the stance yield off, and at half) for G generations, then go "
+                   "on from the best (default 50; 0: the first start alone)")
+      ->check(wholeNumber())
+      ->check(CLI::Range(0, 100000));
   command->add_option("--push", args->pushes,
                       "Robustness: every evaluation takes this push, TIME,X,Y,Z[,LINK] (seconds, "
                       "N s); repeatable");
@@ -599,7 +611,7 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
     for (const char* flag :
          {"--harmonics", "--terrain", "--window", "--population", "--optimizer", "--seed",
           "--no-prior", "--trials", "--trial-push", "--robust-push", "--restart-after",
-          "--style-weight"})
+          "--start-generations", "--style-weight"})
       if (command->count(flag) > 0) args->given.emplace_back(flag);
     if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");

@@ -148,7 +148,7 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     if (!search.is_object()) return Status::error(where + "search: expected an object");
     unknownKeys(search,
                 {"minutes", "population", "no_prior", "optimizer", "seed", "weights", "trials",
-                 "trial_push_m_s", "robust_push_m_s", "restart_after"},
+                 "trial_push_m_s", "robust_push_m_s", "restart_after", "start_generations"},
                 name, warnings, "search.");
     check(read(search, "minutes", project.search.minutes, in));
     check(read(search, "population", project.search.population, in));
@@ -158,6 +158,7 @@ Status readSearchAndView(const json& document, const std::string& where, const s
     check(read(search, "trial_push_m_s", project.search.trial_push_m_s, in));
     check(read(search, "robust_push_m_s", project.search.robust_push_m_s, in));
     check(read(search, "restart_after", project.search.restart_after, in));
+    check(read(search, "start_generations", project.search.start_generations, in));
     std::string optimizer = search::optimizerName(project.search.optimizer);
     check(read(search, "optimizer", optimizer, in));
     if (status.ok()) {
@@ -394,7 +395,8 @@ std::string projectJson(const Project& project, const std::filesystem::path& bas
                    {"no_prior", s.no_prior}, {"optimizer", search::optimizerName(s.optimizer)},
                    {"seed", s.seed},         {"weights", weightsJson(s.weights)},
                    {"trials", s.trials},     {"trial_push_m_s", s.trial_push_m_s},
-                   {"robust_push_m_s", s.robust_push_m_s}, {"restart_after", s.restart_after}};
+                   {"robust_push_m_s", s.robust_push_m_s}, {"restart_after", s.restart_after},
+                   {"start_generations", s.start_generations}};
   const ViewSettings& v = project.view;
   out["view"] = {{"speed", v.speed},
                  {"loop", v.loop},

@@ -491,6 +491,9 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   EXPECT_NE(run.out.find("seeded from the DFT"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("gen   2"), std::string::npos) << run.out;
+  // The search says which start it is on: the prior walks the 1.5 s window at once, so it is kept
+  // (--start-generations, docs/search.md "Trying starts").
+  EXPECT_NE(run.out.find("search: start 1 of 2 (the prior) kept"), std::string::npos) << run.out;
   for (const char* name : {"best.bvh", "best.glb", "best.json", "history.csv", "checkpoint.json"})
     EXPECT_TRUE(std::filesystem::exists(out / name)) << name;
   const std::string csv = test::readText(out / "history.csv");

@@ -83,6 +83,7 @@ TEST(ProjectFileTest, EverySettingSurvivesASaveAndALoad) {
   p.search.trial_push_m_s = 0.45;
   p.search.robust_push_m_s = 0.25;
   p.search.restart_after = 6;
+  p.search.start_generations = 7;
   p.edits.band_gains[2][1] = 0.5;
   p.edits.styles.push_back({"tired", (test::sourceDir() / "assets" / "a.bvh").string(),
                             (dir.path() / "b.bvh").string(), 0.75});

@@ -73,6 +73,30 @@ TEST(SearchGenome, ThePriorPointIsTheAnalysedMotion) {
   EXPECT_EQ(r, blind.layout.startPoint(7));
 }
 
+// The starts a search may try: the prior, and the prior with the legs yielding by half on
+// landing (the stance yield, the one gene they differ in); without a prior, the random start.
+TEST(SearchGenome, TheStartsAreThePriorAndTheYieldingLegs) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  const Problem p = makeProblem(biped, 2.0);
+  const std::vector<GenomeLayout::Start> starts = p.layout.startPoints(1);
+  ASSERT_EQ(starts.size(), 2u);
+  EXPECT_EQ(starts[0].name, "the prior");
+  EXPECT_EQ(starts[0].point, p.layout.startPoint(1));
+  EXPECT_EQ(starts[1].name, "stance yield 0.5");
+  const std::vector<std::string>& names = p.layout.names();
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] != "balance.stance_yield") {
+      EXPECT_EQ(starts[1].point[i], starts[0].point[i]) << names[i];
+    }
+  }
+  EXPECT_EQ(p.layout.decodeGains(starts[0].point).stance_yield, 0.0);
+  EXPECT_NEAR(p.layout.decodeGains(starts[1].point).stance_yield, 0.5, 1e-12);
+  const Problem blind = makeProblem(biped, 2.0, true);
+  ASSERT_EQ(blind.layout.startPoints(7).size(), 1u);
+  EXPECT_EQ(blind.layout.startPoints(7)[0].point, blind.layout.startPoint(7));
+}
+
 // The heading share is a gene only where two or more leg pairs balance (the trot's forelegs and
 // hind legs), starting at 1; a biped's genome has no such gene and decodes it as off.
 TEST(SearchGenome, OnlyCharactersWithTwoLegPairsSearchTheHeadingShare) {
@@ -280,6 +304,61 @@ TEST(SearchSession, CheckpointResumeEqualsAnUninterruptedRun) {
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.message().find("not the same search"), std::string::npos) << refused.message();
   }
+}
+
+// Trying starts (EvolveSettings::start_generations): a start whose best walks the whole window is
+// kept at once, so the search is the one from that start alone, bit for bit; when every run
+// falls (a push no gait survives), each start has its generations, then the better goes on, and
+// a checkpoint within the trials resumes to the uninterrupted result.
+TEST(SearchSession, AStartThatWalksIsKeptAndFallingStartsEachHaveTheirTrial) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  EvolveSettings trying = small(2, 3);
+  trying.start_generations = 2;
+  EvolveSettings one = trying;
+  one.start_generations = 0;
+  auto walks = Session::create(makeProblem(biped, 1.0), trying).value();
+  auto alone = Session::create(makeProblem(biped, 1.0), one).value();
+  EXPECT_EQ(walks->snapshot()->start, "trying start 1 of 2 (the prior)");
+  EXPECT_EQ(alone->snapshot()->start, "");
+  while (walks->runGeneration() && alone->runGeneration()) {
+  }
+  EXPECT_FALSE(walks->snapshot()->best_terms.fell);
+  EXPECT_EQ(walks->snapshot()->start, "start 1 of 2 (the prior) kept");
+  EXPECT_EQ(walks->snapshot()->best_point, alone->snapshot()->best_point);
+  EXPECT_EQ(walks->snapshot()->best_terms.total, alone->snapshot()->best_terms.total);
+
+  auto pushed = [&biped] {
+    Problem p = makeProblem(biped, 1.5);
+    p.simulation.pushes.push_back({0.2, glm::dvec3(600.0, 0.0, 0.0), ""});
+    return p;
+  };
+  EvolveSettings settings = small(2, 6);
+  settings.start_generations = 2;
+  auto whole = Session::create(pushed(), settings).value();
+  std::vector<std::string> notes;
+  while (whole->runGeneration()) notes.push_back(whole->snapshot()->start);
+  ASSERT_EQ(notes.size(), 6u);
+  EXPECT_TRUE(whole->snapshot()->best_terms.fell);
+  EXPECT_EQ(notes[0], "trying start 1 of 2 (the prior)");
+  EXPECT_EQ(notes[1], "trying start 2 of 2 (stance yield 0.5)");
+  EXPECT_EQ(notes[2], "trying start 2 of 2 (stance yield 0.5)");
+  EXPECT_NE(notes[3].find(" kept"), std::string::npos) << notes[3];
+  EXPECT_EQ(notes[5], notes[3]);
+  std::printf("every run pushed over: %s, best %.2f\n", notes[5].c_str(),
+              whole->snapshot()->best_terms.total);
+
+  auto first = Session::create(pushed(), settings).value();
+  for (int g = 0; g < 3; ++g) ASSERT_TRUE(first->runGeneration());
+  const std::string text = first->checkpoint().dump();
+  auto second = Session::resume(pushed(), nlohmann::json::parse(text)).value();
+  EXPECT_EQ(second->snapshot()->start, "trying start 2 of 2 (stance yield 0.5)");
+  while (second->runGeneration()) {
+  }
+  EXPECT_EQ(second->snapshot()->generation, 6);
+  EXPECT_EQ(second->snapshot()->start, notes[5]);
+  EXPECT_EQ(second->snapshot()->best_point, whole->snapshot()->best_point);
+  EXPECT_EQ(second->checkpoint()["optimizer"], whole->checkpoint()["optimizer"]);
 }
 
 // Weights changed while a search runs apply from the next generation, not to the one before.

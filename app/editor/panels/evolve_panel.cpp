@@ -94,6 +94,14 @@ void drawRunningSettings(const EvolutionState& evolution) {
                       evolution.started.search.no_prior ? ", no prior" : "");
 }
 
+// A count of generations, 0..100000, with its tooltip.
+void inputGenerations(const char* label, int& generations, int fast_step, const char* tooltip) {
+  ImGui::SetNextItemWidth(90.0f);
+  ImGui::InputInt(label, &generations, 1, fast_step);
+  generations = std::clamp(generations, 0, 100000);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tooltip);
+}
+
 // Budget, window, prior, optimiser, population, seed, trials and restarts of the next search.
 void drawSearchSettings(EditorState& state) {
   EvolutionState& evolution = state.evolution;
@@ -161,14 +169,12 @@ void drawSearchSettings(EditorState& state) {
         "Pushes inside every run, per kg of body (0: none; 0.3 is 18 N s on 60 kg): forward, "
         "left, back and right of the clip's travel at 15/35/55/75%% of the window, at no extra "
         "cost");
-  ImGui::SetNextItemWidth(90.0f);
-  ImGui::InputInt("restart after", &evolution.settings.search.restart_after, 1, 5);
-  evolution.settings.search.restart_after =
-      std::clamp(evolution.settings.search.restart_after, 0, 100000);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "CMA-ES: start again from the clip's DFT after this many generations "
-        "without a better best, keeping the best (0: never)");
+  inputGenerations("restart after", evolution.settings.search.restart_after, 5,
+                   "CMA-ES: start again from the clip's DFT after this many generations "
+                   "without a better best, keeping the best (0: never)");
+  inputGenerations("try starts", evolution.settings.search.start_generations, 10,
+                   "Generations each start is tried (the stance yield off, and at half: legs "
+                   "that give on landing) before the best goes on (0: the first start alone)");
 }
 
 // Live: a running search takes them from its next generation.
@@ -286,6 +292,7 @@ void drawProgress(EditorState& state, search::SessionState run_state, bool runni
   ImGui::Text("%s: generation %d, %lld evaluations, %.0f s (%.1f eval/s)",
               search::sessionStateName(run_state), snap.generation, snap.evaluations, wall,
               wall > 0.0 ? static_cast<double>(snap.evaluations) / wall : 0.0);
+  if (!snap.start.empty()) ImGui::TextDisabled("%s", snap.start.c_str());
   if (running && evolution.session) {
     // The budget spent: the larger share of its minutes and of its generations.
     const search::EvolveSettings& used = evolution.session->settings();

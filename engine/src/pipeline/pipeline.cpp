@@ -189,6 +189,7 @@ search::EvolveSettings evolveSettings(const SearchSettings& search) {
   settings.minutes = search.minutes;
   settings.seed = search.seed;
   settings.restart_after = search.restart_after;
+  settings.start_generations = search.start_generations;
   return settings;
 }
 

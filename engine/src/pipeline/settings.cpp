@@ -100,6 +100,8 @@ Status SearchSettings::validate() const {
     return Status::error("search.robust_push_m_s: must be in [0, 10] m/s");
   if (restart_after < 0 || restart_after > 100000)
     return Status::error("search.restart_after: must be 0 (never) to 100000 generations");
+  if (start_generations < 0 || start_generations > 100000)
+    return Status::error("search.start_generations: must be 0 (one start) to 100000 generations");
   return Status();
 }
 

@@ -24,6 +24,10 @@ constexpr double kSwingLiftRange = 0.05;  // swing_lift searched in [0, this] (p
 constexpr int kSwingLiftGain = 7;         // physics::balanceGain's index of `swing_lift`
 constexpr int kHeadingGain = 8;           // and of `heading`
 constexpr int kStanceYawGain = 12;        // and of `stance_yaw`
+constexpr int kStanceYieldGain = 13;      // and of `stance_yield`
+// The stance yield's second start (startPoints): legs that give by half on landing, where the
+// Bandai tired run stood (docs/physics.md "The stance yield").
+constexpr double kStanceYieldAlternative = 0.5;
 constexpr double kHeadingPrior = 1.0;
 
 // The search range of balance gain i.
@@ -114,7 +118,8 @@ Result<GenomeLayout> GenomeLayout::create(const physics::BodyPlan& plan,
   // ball-hipped leg alone, physics::findLegPairs) has no balance feedback: of the gains only the
   // swing lift acts on it. The stance yield starts at 0 (off) for every character: from 0.5 the
   // Bandai tired run stood on more seeds, but iClone, which stood from 0, fell on two of three,
-  // and the angry and tired walks tracked 1.1-1.3 deg worse (docs/physics.md "The stance yield").
+  // and the angry and tired walks tracked 1.1-1.3 deg worse (docs/physics.md "The stance yield");
+  // startPoints() offers 0.5 as a second start, for a search to try.
   physics::BalanceGains defaults;
   const size_t pairs = physics::findLegPairs(plan).size();
   if (pairs >= 2) defaults.heading = kHeadingPrior;
@@ -162,6 +167,18 @@ std::vector<double> GenomeLayout::startPoint(std::uint64_t seed) const {
   }
   for (size_t i = 0; i < genes_.size(); ++i) x[i] = coordinate(i, prior_[i]);
   return x;
+}
+
+std::vector<GenomeLayout::Start> GenomeLayout::startPoints(std::uint64_t seed) const {
+  std::vector<Start> starts{{settings_.no_prior ? "a random point" : "the prior", startPoint(seed)}};
+  if (settings_.no_prior) return starts;
+  for (size_t i = 0; i < genes_.size(); ++i) {
+    if (genes_[i].kind != Kind::kGain || genes_[i].gain != kStanceYieldGain) continue;
+    Start yielding{"stance yield 0.5", starts.front().point};
+    yielding.point[i] = coordinate(i, kStanceYieldAlternative);
+    starts.push_back(std::move(yielding));
+  }
+  return starts;
 }
 
 spectral::TargetMotion GenomeLayout::decodeTarget(std::span<const double> x) const {

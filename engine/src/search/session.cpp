@@ -14,6 +14,7 @@
 
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
+#include "sinew/search/portfolio.h"
 
 namespace sinew::search {
 namespace {
@@ -100,6 +101,8 @@ Status EvolveSettings::validate() const {
     return Status::error("initial_sigma must be in (0, 1]");
   if (restart_after < 0 || restart_after > 100000)
     return Status::error("restart_after must be 0 (never) to 100000 generations");
+  if (start_generations < 0 || start_generations > 100000)
+    return Status::error("start_generations must be 0 (the first start alone) to 100000");
   return Status();
 }
 
@@ -110,12 +113,12 @@ Session::~Session() {
   stop();
 }
 
-Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSettings& settings) {
-  if (Status s = settings.validate(); !s.ok())
-    return Status::error("search settings: " + s.message());
-  std::unique_ptr<Session> session(new Session(std::move(problem), settings));
-  const int n = session->problem_.layout.size();
-  const std::vector<double> start = session->problem_.layout.startPoint(settings.seed);
+namespace {
+
+// One optimiser of `settings`' kind from `start`.
+Result<std::unique_ptr<Optimizer>> makeOptimizer(const EvolveSettings& settings,
+                                                 const std::vector<double>& start) {
+  const int n = static_cast<int>(start.size());
   if (settings.optimizer == OptimizerKind::kCmaes) {
     CmaesSettings c;
     c.population = settings.population;
@@ -127,18 +130,73 @@ Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSe
     c.max_restarts = settings.restart_after > 0 ? kMaxCmaesRestarts : 0;
     Result<std::unique_ptr<Cmaes>> made = Cmaes::create(n, c);
     if (!made.ok()) return made.status();
-    session->optimizer_ = std::move(made).value();
-  } else {
-    GeneticSettings g;
-    g.population = settings.population > 0 ? settings.population : 32;
-    g.initial_point = start;
-    g.initial_spread = settings.initial_sigma;
-    g.mutation_scale = settings.initial_sigma;
-    g.seed = settings.seed;
-    Result<std::unique_ptr<Genetic>> made = Genetic::create(n, g);
-    if (!made.ok()) return made.status();
-    session->optimizer_ = std::move(made).value();
+    return std::unique_ptr<Optimizer>(std::move(made).value());
   }
+  GeneticSettings g;
+  g.population = settings.population > 0 ? settings.population : 32;
+  g.initial_point = start;
+  g.initial_spread = settings.initial_sigma;
+  g.mutation_scale = settings.initial_sigma;
+  g.seed = settings.seed;
+  Result<std::unique_ptr<Genetic>> made = Genetic::create(n, g);
+  if (!made.ok()) return made.status();
+  return std::unique_ptr<Optimizer>(std::move(made).value());
+}
+
+// The optimiser of a new search: from the layout's first start, or, when it offers more and
+// settings.start_generations > 0, a Portfolio trying each (the same seed for every member).
+Result<std::unique_ptr<Optimizer>> makeSearch(const std::vector<GenomeLayout::Start>& starts,
+                                              const EvolveSettings& settings) {
+  std::vector<std::unique_ptr<Optimizer>> members;
+  for (const GenomeLayout::Start& start : starts) {
+    Result<std::unique_ptr<Optimizer>> made = makeOptimizer(settings, start.point);
+    if (!made.ok()) return made.status();
+    members.push_back(std::move(made).value());
+  }
+  if (members.size() == 1) return std::move(members.front());
+  Result<std::unique_ptr<Portfolio>> portfolio =
+      Portfolio::create(std::move(members), settings.start_generations);
+  if (!portfolio.ok()) return portfolio.status();
+  return std::unique_ptr<Optimizer>(std::move(portfolio).value());
+}
+
+// Which of a portfolio's starts asks for the current generation (0 for a single start).
+int askingStart(const Optimizer& optimizer) {
+  const auto* portfolio = dynamic_cast<const Portfolio*>(&optimizer);
+  return portfolio == nullptr ? 0 : portfolio->current();
+}
+
+// A portfolio still trying starts keeps start `asking` once the best run of the generation it
+// asked for walked the whole window: a start that works costs no more than a search from it.
+void keepStartThatWalks(Optimizer& optimizer, int asking, const FitnessTerms& best) {
+  auto* portfolio = dynamic_cast<Portfolio*>(&optimizer);
+  if (portfolio == nullptr || portfolio->chosen() >= 0) return;
+  if (std::isfinite(best.total) && !best.fell) portfolio->keep(asking);
+}
+
+// For the user: which start the search is on ("" for a single start).
+std::string startNote(const Optimizer& optimizer, const std::vector<std::string>& names) {
+  const auto* portfolio = dynamic_cast<const Portfolio*>(&optimizer);
+  if (portfolio == nullptr) return {};
+  const int i = portfolio->current();
+  const std::string which = "start " + std::to_string(i + 1) + " of " +
+                            std::to_string(portfolio->members()) +
+                            (static_cast<size_t>(i) < names.size() ? " (" + names[i] + ")" : "");
+  return portfolio->chosen() < 0 ? "trying " + which : which + " kept";
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Session>> Session::create(Problem problem, const EvolveSettings& settings) {
+  if (Status s = settings.validate(); !s.ok())
+    return Status::error("search settings: " + s.message());
+  std::unique_ptr<Session> session(new Session(std::move(problem), settings));
+  std::vector<GenomeLayout::Start> starts = session->problem_.layout.startPoints(settings.seed);
+  if (settings.start_generations == 0) starts.resize(1);
+  for (const GenomeLayout::Start& start : starts) session->start_names_.push_back(start.name);
+  Result<std::unique_ptr<Optimizer>> optimizer = makeSearch(starts, settings);
+  if (!optimizer.ok()) return optimizer.status();
+  session->optimizer_ = std::move(optimizer).value();
   session->publish(SessionState::kReady);
   return session;
 }
@@ -164,6 +222,7 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     settings.initial_sigma = s.at("initial_sigma").get<double>();
     settings.record_population = s.at("record_population").get<bool>();
     settings.restart_after = s.value("restart_after", 0);  // checkpoints from before: off
+    settings.start_generations = s.value("start_generations", 0);  // before: one start
     if (Status st = settings.validate(); !st.ok())
       return Status::error("checkpoint: settings: " + st.message());
     if (checkpoint.at("genome_size").get<int>() != problem.layout.size())
@@ -179,6 +238,8 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
     if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());
     session->optimizer_ = std::move(optimizer).value();
+    for (const GenomeLayout::Start& start : session->problem_.layout.startPoints(settings.seed))
+      session->start_names_.push_back(start.name);
     const nlohmann::json& history = checkpoint.at("history");
     for (size_t i = 0; i < history.size(); ++i) {
       const nlohmann::json& h = history.at(i);
@@ -245,7 +306,8 @@ nlohmann::json Session::checkpoint() const {
             {"seed", settings_.seed},
             {"initial_sigma", settings_.initial_sigma},
             {"record_population", settings_.record_population},
-            {"restart_after", settings_.restart_after}}},
+            {"restart_after", settings_.restart_after},
+            {"start_generations", settings_.start_generations}}},
           {"genome_size", problem_.layout.size()},
           {"weights", weightsJson(problem_.weights)},
           {"optimizer", optimizer_->saveState()},
@@ -298,6 +360,7 @@ bool Session::runGeneration() {
   }
   if (started_at_ == 0.0) started_at_ = now();
   const std::vector<std::vector<double>> points = optimizer_->ask();
+  const int asking = askingStart(*optimizer_);
   const int threads = settings_.threads > 0 ? settings_.threads : hardwareThreads();
   std::vector<Evaluation> results =
       evaluator_ ? evaluator_(problem_, points, threads, &cancel_, settings_.record_population)
@@ -342,6 +405,7 @@ bool Session::runGeneration() {
     // Under the lock: checkpoint() reads the optimiser's state from other threads.
     std::lock_guard<std::mutex> lock(mutex_);
     if (Status told = optimizer_->tell(costs); !told.ok()) return false;
+    keepStartThatWalks(*optimizer_, asking, results[best].terms);
     record.generation = optimizer_->generation();
     record.evaluations = optimizer_->evaluations();
     record.wall_s = wall_offset_s_ + (now() - started_at_);
@@ -369,6 +433,7 @@ bool Session::runGeneration() {
     }
     snap->state = running_ ? SessionState::kRunning : SessionState::kReady;
     snap->failure = failureLocked();
+    snap->start = startNote(*optimizer_, start_names_);
     snapshot_ = std::move(snap);
   }
   return true;
@@ -384,6 +449,7 @@ void Session::publish(SessionState state) {
     snap->best_point = best_point_;
     snap->best_terms = best_terms_;
     snap->best_joints = best_joints_;
+    snap->start = startNote(*optimizer_, start_names_);
   }
   snap->state = state;
   snap->failure = failureLocked();

@@ -100,6 +100,8 @@ struct SearchSettings {
                                 // (search::addRobustPushes); 0: none
   int restart_after = 0;        // CMA-ES: restart from the prior after this many generations
                                 // without a better best (search::EvolveSettings); 0: never
+  int start_generations = 50;   // generations each start is tried before the best goes on (the
+                                // stance yield off and at half: search::EvolveSettings); 0: one
   bool operator==(const SearchSettings&) const = default;
   Status validate() const;  // the message names the field ("search.minutes: ...")
 };

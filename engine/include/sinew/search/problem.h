@@ -60,6 +60,14 @@ class GenomeLayout {
   // The start of the search: the DFT prior (or, without a prior, a uniform random point from
   // `seed`).
   std::vector<double> startPoint(std::uint64_t seed) const;
+  // The starts worth trying (Portfolio), startPoint() first: with a prior, one more per
+  // structural gene a small step cannot leave, today the stance yield at 0.5 (where the layout has
+  // that gene: characters with a leg that balances); without a prior, startPoint() alone.
+  struct Start {
+    std::string name;  // for the user: "the prior", "stance yield 0.5"
+    std::vector<double> point;
+  };
+  std::vector<Start> startPoints(std::uint64_t seed) const;
   // The controller a point describes. Precondition: x.size() == size(), each in [0, 1].
   spectral::TargetMotion decodeTarget(std::span<const double> x) const;
   physics::BalanceGains decodeGains(std::span<const double> x) const;

@@ -68,6 +68,10 @@ struct EvolveSettings {
   int restart_after = 0;  // CMA-ES: a local restart (from the start point, a fresh stream of
                           // samples, the best kept) after this many generations without a
                           // better best; 0: never (CmaesSettings::stall_generations)
+  // Each of the layout's starts (GenomeLayout::startPoints: the stance yield off and at half) is
+  // searched for this many generations in turn, then the one with the best cost goes on alone
+  // (Portfolio); 0, or a layout with one start: the first start alone.
+  int start_generations = 50;
   bool record_population = false;  // keep every individual's recorded motion in the snapshots
   int nice = 0;  // 0..19: the search threads' niceness (Linux). The editor uses 10 so that its UI
                  // thread gets the cores first while the search still takes whatever is left.
@@ -110,6 +114,9 @@ struct Snapshot {
   SessionState state = SessionState::kReady;
   std::string failure;  // why the search stopped without a result (every evaluation of its first
                         // kGenerationsWithoutScore generations diverged), or empty
+  std::string start;    // which start the search is on, when it tries several
+                        // (EvolveSettings::start_generations): "trying start 2 of 2 (stance yield
+                        // 0.5)", "start 1 of 2 (the prior) kept"; empty for one start
 };
 
 // How a session evaluates a generation: evaluateAll's contract (results in the points' order,
@@ -160,6 +167,7 @@ class Session {
   Problem problem_;
   EvolveSettings settings_;
   std::unique_ptr<Optimizer> optimizer_;
+  std::vector<std::string> start_names_;  // (starts) GenomeLayout::Start::name, for Snapshot::start
   std::vector<GenerationRecord> history_;
   std::vector<double> best_point_;
   FitnessTerms best_terms_;
