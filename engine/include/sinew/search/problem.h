@@ -43,7 +43,9 @@ struct GenomeSettings {
   double offset_range_rad = 0.17;  // A within +-10 degrees of the clip's, > 0
   double amplitude_factor = 2.0;   // B within [B0 / f, B0 f], > 1
   double phase_range_rad = 0.5;    // D within +-0.5 rad of the clip's, > 0
-  double omega_range = 0.2;        // omega0 within +-20%, [0, 0.9]
+  double omega_range = 0.05;       // omega0 within +-5%, [0, 0.9] (+-20% until 2026-12-07: its
+                                   // samples moved the tempo 0.8% a step, and bests drifted 2-3%
+                                   // out of phase with the clip; docs/search.md)
   double gain_range = 1.0;         // cd, cv, ankle and stance gains within +-this, > 0
   bool no_prior = false;           // generic ranges and a random start (the baseline)
 
