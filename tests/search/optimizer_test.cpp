@@ -491,6 +491,13 @@ TEST(SearchCheckpoint, LocalRestartsStartAgainAtTheInitialMeanAfterAStall) {
   expectCheckpointIsSeamless(cmaesFactory(n, local), rastrigin(shiftedOptimum(n)), "local");
 }
 
+// A state Optimizer::load must refuse, with a message naming `field`.
+void expectRefused(const json& state, const std::string& field) {
+  Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(state);
+  EXPECT_FALSE(loaded.ok()) << field;
+  EXPECT_NE(loaded.message().find(field), std::string::npos) << loaded.message();
+}
+
 TEST(SearchCheckpoint, CorruptedStatesAreRefusedNamingTheField) {
   const int n = 4;
   const CostFunction f = sphere(shiftedOptimum(n));
@@ -505,76 +512,71 @@ TEST(SearchCheckpoint, CorruptedStatesAreRefusedNamingTheField) {
   ASSERT_TRUE(Optimizer::load(cmaes_state).ok());
   ASSERT_TRUE(Optimizer::load(genetic_state).ok());
 
-  auto refused = [](const json& state, const std::string& field) {
-    Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(state);
-    EXPECT_FALSE(loaded.ok()) << field;
-    EXPECT_NE(loaded.message().find(field), std::string::npos) << loaded.message();
-  };
-  refused(json::array(), "optimizer state");
+  expectRefused(json::array(), "optimizer state");
   json s = cmaes_state;
   s["format"] = "sinew.target";
-  refused(s, "format");
+  expectRefused(s, "format");
   s = cmaes_state;
   s["kind"] = "annealing";
-  refused(s, "kind");
+  expectRefused(s, "kind");
   s = cmaes_state;
   s.erase("mean");
-  refused(s, "mean: missing");
+  expectRefused(s, "mean: missing");
   s = cmaes_state;
   s["covariance"].erase(0);
-  refused(s, "covariance: expected 4 arrays of 4 finite numbers, found 3");
+  expectRefused(s, "covariance: expected 4 arrays of 4 finite numbers, found 3");
   s = cmaes_state;
   s["covariance"][1][2] = "x";
-  refused(s, "covariance[1]");
+  expectRefused(s, "covariance[1]");
   s = cmaes_state;
   s["basis"][3].erase(0);
-  refused(s, "basis[3]");
+  expectRefused(s, "basis[3]");
   s = cmaes_state;
   s["samples"].erase(0);
-  refused(s, "samples");
+  expectRefused(s, "samples");
   s = cmaes_state;
   s["sigma"] = -0.1;
-  refused(s, "sigma");
+  expectRefused(s, "sigma");
   s = cmaes_state;
   s["points"][0][1] = 1.5;
-  refused(s, "points");
+  expectRefused(s, "points");
   s = cmaes_state;
   s["points"].erase(0);
-  refused(s, "points");
+  expectRefused(s, "points");
   s = cmaes_state;
   s["rng"]["engine"] = "not a generator";
-  refused(s, "rng: engine");
+  expectRefused(s, "rng: engine");
   s = cmaes_state;
   s["settings"]["population"] = 1;
-  refused(s, "settings: population");
+  expectRefused(s, "settings: population");
   s = cmaes_state;
   s["settings"].erase("seed");
-  refused(s, "settings: seed");
+  expectRefused(s, "settings: seed");
   s = cmaes_state;
   s["best_cost"] = "nan";
-  refused(s, "best_cost");
+  expectRefused(s, "best_cost");
   s = cmaes_state;
   s["best"].erase(0);
-  refused(s, "best");
+  expectRefused(s, "best");
   s = cmaes_state;
   s["history"][0] = "a lot";
-  refused(s, "history[0]");
+  expectRefused(s, "history[0]");
 
   s = genetic_state;
   s["points"].erase(0);
-  refused(s, "points");
+  expectRefused(s, "points");
   s = genetic_state;
   s["settings"]["crossover"] = "one-point";
-  refused(s, "settings: crossover");
+  expectRefused(s, "settings: crossover");
   s = genetic_state;
   s["settings"]["elites"] = 64;
-  refused(s, "settings: elites");
+  expectRefused(s, "settings: elites");
   s = genetic_state;
   s.erase("rng");
-  refused(s, "rng: missing");
+  expectRefused(s, "rng: missing");
   s = genetic_state;
   s["dimension"] = 5;
-  refused(s, "best: expected an array of 5 finite numbers, found 4");
+  expectRefused(s, "best: expected an array of 5 finite numbers, found 4");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -768,35 +770,30 @@ TEST(SearchPortfolio, BadMembersAndCorruptedStatesAreRefused) {
   const json state = p->saveState();
   EXPECT_EQ(state["kind"], "portfolio");
   ASSERT_TRUE(Optimizer::load(state).ok());
-  auto refused = [](const json& s, const std::string& field) {
-    Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(s);
-    EXPECT_FALSE(loaded.ok()) << field;
-    EXPECT_NE(loaded.message().find(field), std::string::npos) << loaded.message();
-  };
   json s = state;
   s.erase("members");
-  refused(s, "members: missing");
+  expectRefused(s, "members: missing");
   s = state;
   s["members"].erase(0);
-  refused(s, "expected 2 to 8 members, got 1");
+  expectRefused(s, "expected 2 to 8 members, got 1");
   s = state;
   s["members"][1]["sigma"] = -1.0;
-  refused(s, "members[1]: optimizer state: sigma");
+  expectRefused(s, "members[1]: optimizer state: sigma");
   s = state;
   s["members"][0] = state;
-  refused(s, "members[0]: a portfolio cannot hold a portfolio");
+  expectRefused(s, "members[0]: a portfolio cannot hold a portfolio");
   s = state;
   s["current"] = 2;
-  refused(s, "current");
+  expectRefused(s, "current");
   s = state;
   s["chosen"] = 0;
-  refused(s, "chosen: the chosen member is the one asking");
+  expectRefused(s, "chosen: the chosen member is the one asking");
   s = state;
   s["points"] = s["members"][0]["points"];
-  refused(s, "points: not the current member's");
+  expectRefused(s, "points: not the current member's");
   s = state;
   s["dimension"] = 4;
-  refused(s, "dimension");
+  expectRefused(s, "dimension");
 }
 
 }  // namespace
