@@ -736,10 +736,10 @@ TEST(SearchPortfolio, KeepEndsTheTrialsWithTheMemberItNames) {
 // state as the uninterrupted run (the generic checks of every optimiser, with trials of 8: the
 // checkpoint at generation 12 is within the second member's trial, the choice comes at 16).
 TEST(SearchPortfolio, DeterministicAndCheckpointsAreSeamless) {
-  const int n = 5;
-  const CostFunction f = rastrigin(shiftedOptimum(n));
-  const Factory make = [n](std::uint64_t seed) -> std::unique_ptr<Optimizer> {
-    return portfolio({Point(n, 0.5), Point(n, 0.3)}, 8, seed);
+  constexpr int kN = 5;
+  const CostFunction f = rastrigin(shiftedOptimum(kN));
+  const Factory make = [](std::uint64_t seed) -> std::unique_ptr<Optimizer> {
+    return portfolio({Point(kN, 0.5), Point(kN, 0.3)}, 8, seed);
   };
   expectDeterministic(make, f, "portfolio");
   expectCheckpointIsSeamless(make, f, "portfolio");
