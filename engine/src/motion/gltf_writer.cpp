@@ -278,6 +278,10 @@ Result<Model> withNewAnimation(const GltfSource& source, const Skeleton& skeleto
       target.scale = {s.x, s.y, s.z};
     }
   }
+  // tinygltf writes an object with nothing in it as null, which no reader takes back: a scene
+  // whose nodes the reader could not use (a key it did not know) gets a name (found by fuzzing).
+  for (tinygltf::Scene& scene : model.scenes)
+    if (scene.name.empty() && scene.nodes.empty()) scene.name = "Scene";
   model.animations.clear();
   BufferBuilder buffer(model);
   if (Status status = repackBuffers(model, buffer, file); !status.ok()) return status;
