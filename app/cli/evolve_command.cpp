@@ -564,8 +564,9 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0, 100000));
   command
       ->add_option("--start-generations", args->start_generations,
-                   "Try each start (the stance yield off, and at half) for G generations, then go "
-                   "on from the best (default 50; 0: the first start alone)")
+                   "Try the starts (the stance yield off, then at half) for G generations each; "
+                   "a start whose best walks the whole window is kept at once, else the best "
+                   "goes on (default 50; 0: the first start alone)")
       ->check(wholeNumber())
       ->check(CLI::Range(0, 100000));
   command->add_option("--push", args->pushes,

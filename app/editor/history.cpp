@@ -124,7 +124,7 @@ std::string describeChange(const app::Project& before, const app::Project& after
   if (a.restart_after != b.restart_after)
     changes.push_back("restart after " + std::to_string(b.restart_after) + " generations");
   if (a.start_generations != b.start_generations)
-    changes.push_back("starts tried " + std::to_string(b.start_generations) + " generations");
+    changes.push_back("try starts " + std::to_string(b.start_generations) + " generations");
   if (a.trial_push_m_s != b.trial_push_m_s)
     changes.push_back("trial push " + number(b.trial_push_m_s) + " m/s");
   if (a.robust_push_m_s != b.robust_push_m_s)

@@ -173,8 +173,9 @@ void drawSearchSettings(EditorState& state) {
                    "CMA-ES: start again from the clip's DFT after this many generations "
                    "without a better best, keeping the best (0: never)");
   inputGenerations("try starts", evolution.settings.search.start_generations, 10,
-                   "Generations each start is tried (the stance yield off, and at half: legs "
-                   "that give on landing) before the best goes on (0: the first start alone)");
+                   "Generations each start is tried (the stance yield off, then at half: legs "
+                   "that give on landing); a start whose best walks the whole window is kept at "
+                   "once, else the best goes on (0: the first start alone)");
 }
 
 // Live: a running search takes them from its next generation.

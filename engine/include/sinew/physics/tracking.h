@@ -118,8 +118,8 @@ struct BalanceGains {
   // than `servo_rate` (x (1 - share)), [0, 0.9]: a landing leg gives and extends with its target
   // instead of being driven straight back to it at up to its torque limit (a strut that turns a
   // run's forward speed into flight: docs/physics.md "The stance yield").
-  // Off (0) here and where the search starts it (a gene: started at 0.5, the Bandai tired run
-  // stood but iClone fell on two seeds of three; docs/physics.md "The stance yield").
+  // Off (0) here and at the search's first start; 0.5 is its second start, tried when the first
+  // has not walked in time (search::GenomeLayout::startPoints; docs/physics.md "The stance yield").
   double stance_yield = 0.0;
 };
 

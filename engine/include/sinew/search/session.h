@@ -68,9 +68,10 @@ struct EvolveSettings {
   int restart_after = 0;  // CMA-ES: a local restart (from the start point, a fresh stream of
                           // samples, the best kept) after this many generations without a
                           // better best; 0: never (CmaesSettings::stall_generations)
-  // Each of the layout's starts (GenomeLayout::startPoints: the stance yield off and at half) is
-  // searched for this many generations in turn, then the one with the best cost goes on alone
-  // (Portfolio); 0, or a layout with one start: the first start alone.
+  // The layout's starts (GenomeLayout::startPoints: the stance yield off, then at half) are
+  // searched in turn for this many generations each, the first start whose best walks the whole
+  // window kept at once, else the one with the best cost (Portfolio); 0, or a layout with one
+  // start: the first start alone.
   int start_generations = 50;
   bool record_population = false;  // keep every individual's recorded motion in the snapshots
   int nice = 0;  // 0..19: the search threads' niceness (Linux). The editor uses 10 so that its UI
