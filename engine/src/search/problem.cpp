@@ -339,8 +339,13 @@ Result<Problem> Problem::create(const physics::BodyPlan& plan, const motion::Ske
   if (!layout.ok()) return layout.status();
   Problem p{plan, skeleton, seed, std::move(layout).value(), simulation, weights, 0.0,
             glm::dvec3(0.0, 0.0, 1.0), 0.0, {}};
-  const physics::MotionState state = physics::targetState(plan, skeleton, seed, 0.0);
-  glm::dvec3 v = state.base_linear;
+  // The seed's travel: the base's displacement over one stride. Its velocity at t = 0 would carry
+  // the stride's surge and sway (on the real walks up to 44% and 13 deg off the mean, which the
+  // speed, heading and step terms then asked the search to match).
+  const double period = seed.period();
+  glm::dvec3 v = (physics::targetState(plan, skeleton, seed, period).pose.base_position -
+                  physics::targetState(plan, skeleton, seed, 0.0).pose.base_position) /
+                 period;
   v.y = 0.0;
   p.reference_speed_m_s = glm::length(v);
   if (p.reference_speed_m_s > 1e-6) p.reference_direction = v / p.reference_speed_m_s;

@@ -149,7 +149,7 @@ struct Problem {
   GenomeLayout layout;
   physics::SimulationSettings simulation;  // window (seconds), terrain, pushes
   FitnessWeights weights;
-  double reference_speed_m_s = 0.0;  // horizontal, from the seed target's travel
+  double reference_speed_m_s = 0.0;  // horizontal: the seed's base travel over one stride / period
   glm::dvec3 reference_direction{0.0, 0.0, 1.0};
   double reference_step_m = 0.0;     // reference speed x period / 2
   // Robustness trials (setTrials): besides the nominal run, every point is run once more per
