@@ -15,7 +15,8 @@ ALL_MOMENTS: per direction, the largest impulse of 10/20/40/60/80 N s held at al
 AT_2S: the same at 2 s alone (the bench's measure before 2026-12-07); HELD_AT_AIM: of the 20
 pushes of 40 N s (the issue's aim: four directions x five moments), how many were held.
 ANALYSIS_JSON (`sinew analyze --json`) gives the travel and the stride; without it, forward is +Z
-and the stride 1 s.
+and the stride 1 s. A replay that fails (sinew exits non-zero: a crash, a refused file) is
+counted as not held and named on stderr with its exit code and last message.
 """
 import concurrent.futures
 import json
@@ -53,6 +54,7 @@ def main():
     forward, stride = travel_and_stride(sys.argv[4] if len(sys.argv) > 4 else "")
     fx, fz = forward
     directions = [(fx, fz), (-fx, -fz), (fz, -fx), (-fz, fx)]  # forward, back, left, right
+    direction_names = ["forward", "back", "left", "right"]
     moments = [START_S + stride * k / MOMENTS for k in range(MOMENTS)]
     held_cache = {}
 
@@ -66,8 +68,14 @@ def main():
                 [sinew, "simulate", "--rig", clip, "--controller", best, "--seconds",
                  f"{moment + AFTER_S:.4f}", "--push",
                  f"{moment:.4f},{dx * impulse:.3f},0,{dz * impulse:.3f}", "--json", out],
-                capture_output=True)
-            return done.returncode == 0 and not json.load(open(out))["fell"]
+                capture_output=True, text=True)
+            if done.returncode != 0:  # not a fall: say so, and count it as not held
+                last = (done.stderr.strip().splitlines() or ["no message"])[-1]
+                print(f"push_robustness: the replay pushed {impulse} N s ({direction_names[direction]}) "
+                      f"at {moment:.2f} s failed (exit {done.returncode}): {last}; counted as not held",
+                      file=sys.stderr)
+                return False
+            return not json.load(open(out))["fell"]
         finally:
             os.remove(out)
 
