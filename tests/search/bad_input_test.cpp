@@ -48,7 +48,7 @@ TEST(SearchBadInput, ControllerFilesGiveOneLineNamingTheField) {
                                      "best.json from sinew evolve has them)");
   Result<ControllerFile> gains = editedController(
       c, [](nlohmann::json& j) { j["balance"]["cv_coronal"] = 1e308; }, dir);
-  EXPECT_EQ(gains.message(), file + ": balance: cv_coronal: beyond the limit of +-100");
+  EXPECT_EQ(gains.message(), file + ": balance: cv_coronal: expected a gain within +-100");
   Result<ControllerFile> seed = editedController(
       c, [](nlohmann::json& j) { j["settings"]["seed"] = -1; }, dir);
   EXPECT_EQ(seed.message(), file + ": settings: seed: expected an unsigned 64-bit integer");

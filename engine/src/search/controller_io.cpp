@@ -66,11 +66,10 @@ Status readBalance(const nlohmann::json& json, const std::string& name, Controll
     }
     if (Status s = readNumber(*b.value(), key, where, gain); !s.ok()) return s;
     const double limit = physics::balanceGainLimit(i, kMaxBalanceGain);
-    if (physics::balanceGainIsShare(i) && !(gain >= 0.0 && gain <= limit))
-      return Status::error(where + ": " + key + ": expected a share " +
+    const bool share = physics::balanceGainIsShare(i);
+    if (share ? !(gain >= 0.0 && gain <= limit) : !(std::abs(gain) <= limit))
+      return Status::error(where + ": " + key + ": expected " + (share ? "a share " : "a gain ") +
                            physics::balanceGainRule(i, kMaxBalanceGain));
-    if (!physics::balanceGainIsShare(i) && !(std::abs(gain) <= limit))
-      return Status::error(where + ": " + key + ": beyond the limit of +-100");
   }
   return {};
 }
