@@ -244,6 +244,13 @@ TEST(CliBadInput, OptionsOutOfRangeExitOneWithOneLine) {
        "sinew: --seed: expected a whole number >= 0, got '-1' (see sinew evolve --help)"},
       {"simulate --balance 1e308,0,0,0,0.5",
        "sinew: --balance: cd_sagittal (value 1) must be within +-100"},
+      {"simulate --balance 0,0,0,0,0.5,0,0,0.05,0.5,0,0,0,0,0.95",
+       "sinew: --balance: stance_yield (value 14) must be a share from 0 to 0.9"},
+      {"simulate --balance 0,0,0,0,0.5,0",
+       "sinew: --balance: expected 5 numbers CD_SAGITTAL,CV_SAGITTAL,CD_CORONAL,CV_CORONAL,TORSO (or "
+       "8, then ANKLE_SAGITTAL,ANKLE_CORONAL,SWING_LIFT, or 9, then HEADING, or 12, then "
+       "STANCE_SAGITTAL,STANCE_CORONAL,STANCE_VERTICAL, or 13, then STANCE_YAW, or 14, then "
+       "STANCE_YIELD), got 6"},
       {"simulate --push 1,1e6,0,0",
        "sinew: simulation: pushes[0]: time must be >= 0 s, impulse at most 10000 N s"},
       {"info " + walk() + " --fps 0.001",
