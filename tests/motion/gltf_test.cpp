@@ -1139,6 +1139,39 @@ TEST(GltfExportTest, ExternalBufferAndImageAreEmbedded) {
   }
 }
 
+// tinygltf writes an object with nothing in it as null, which no reader takes back. A scene
+// whose nodes sit under a key the reader does not know (gltf_fuzz found it), a joint node with
+// nothing but its place in the tree, and bare samplers, textures and materials must all export
+// to a file that reads back with the same joints and frames.
+TEST(GltfExportTest, ObjectsWithNothingInThemStillReadBack) {
+  DocBuilder b = curvesDocument();
+  b.doc["nodes"][1]["children"] = json::array({2});
+  b.doc["nodes"].push_back(json::object());
+  b.doc["scenes"].push_back({{"nodez", json::array({0})}});  // a second scene, the default first
+  b.doc["samplers"] = json::array({json::object()});
+  b.doc["textures"] = json::array({json::object()});
+  b.doc["materials"] = json::array({json::object()});
+  test::TempDir dir;
+  const MotionAsset asset = load(b.write(dir, "bare.gltf"));
+  ASSERT_EQ(asset.skeleton.jointCount(), 3);
+  ASSERT_EQ(asset.clips.size(), 1u);
+  for (const char* name : {"bare.glb", "bare_out.gltf"}) {
+    SCOPED_TRACE(name);
+    const std::filesystem::path out = dir / name;
+    ASSERT_TRUE(saveGltf(out, asset, asset.clips[0]).ok());
+    const std::string bytes = test::readText(out);
+    const json doc = std::string(name).ends_with(".glb") ? splitGlb(bytes).doc : json::parse(bytes);
+    for (const char* key : {"scenes", "nodes", "samplers", "textures", "materials"}) {
+      ASSERT_TRUE(doc.contains(key)) << key;
+      for (const json& object : doc[key]) EXPECT_TRUE(object.is_object()) << key << ": " << object;
+    }
+    const MotionAsset back = load(out);
+    EXPECT_EQ(back.skeleton.names, asset.skeleton.names);
+    ASSERT_EQ(back.clips.size(), 1u);
+    EXPECT_EQ(back.clips[0].frame_count, asset.clips[0].frame_count);
+  }
+}
+
 TEST(GltfExportTest, RefusesWhatItCannotWrite) {
   const MotionAsset rig = tinyBvhAsset();
   test::TempDir dir;

@@ -264,9 +264,11 @@ Result<Model> withNewAnimation(const GltfSource& source, const Skeleton& skeleto
     // Animated nodes must use TRS, not a matrix (glTF 2.0, 3.7.2.1); the rest values are the
     // matrix's decomposition.
     tinygltf::Node& target = model.nodes[node];
-    // A name the reader had to clean (a control character, a NUL that cuts it short, not UTF-8)
-    // is written as the joint's name, so the file reads back with the same skeleton.
-    if (firstControlCharacter(target.name) >= 0 || !isValidUtf8(target.name))
+    // A name the reader had to clean or make (a control character, a NUL that cuts it short, not
+    // UTF-8, none at all) is written as the joint's name, so the file reads back with the same
+    // skeleton; a node with nothing else in it would otherwise be written as null.
+    if (target.name.empty() || firstControlCharacter(target.name) >= 0 ||
+        !isValidUtf8(target.name))
       target.name = skeleton.names[j];
     if (!target.matrix.empty()) {
       const glm::dvec3 t = gltf::translationToFile(source, j, skeleton.offsets[j]);
@@ -278,10 +280,13 @@ Result<Model> withNewAnimation(const GltfSource& source, const Skeleton& skeleto
       target.scale = {s.x, s.y, s.z};
     }
   }
-  // tinygltf writes an object with nothing in it as null, which no reader takes back: a scene
-  // whose nodes the reader could not use (a key it did not know) gets a name (found by fuzzing).
+  // tinygltf writes an object with nothing in it as null, which no reader takes back (materials
+  // and samplers it guards itself; joint nodes are named above). A scene whose nodes the reader
+  // could not use (a key it did not know; found by fuzzing) and a bare texture get a name.
   for (tinygltf::Scene& scene : model.scenes)
     if (scene.name.empty() && scene.nodes.empty()) scene.name = "Scene";
+  for (tinygltf::Texture& texture : model.textures)
+    if (texture.name.empty() && texture.sampler < 0 && texture.source < 0) texture.name = "Texture";
   model.animations.clear();
   BufferBuilder buffer(model);
   if (Status status = repackBuffers(model, buffer, file); !status.ok()) return status;
