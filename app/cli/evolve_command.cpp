@@ -212,10 +212,6 @@ Result<std::unique_ptr<search::Session>> makeSession(const EvolveArgs& args,
     if (args.sigma > 0.0) settings.initial_sigma = args.sigma;
     return search::Session::create(std::move(problem), settings);
   }
-  if (args.population > 0 || args.has("--optimizer"))
-    return Status::error(
-        "--resume continues the search as it was: --population and --optimizer come "
-        "from the checkpoint");
   Result<std::unique_ptr<search::Session>> made =
       search::Session::resume(std::move(problem), checkpoint);
   if (!made.ok()) return Status::error(args.resume + ": " + made.message());
@@ -494,6 +490,26 @@ int runEvolve(const EvolveArgs& args) {
 #endif
 }
 
+// The flags that shape the search a checkpoint continues (the rig and its import, the body, the
+// window, the robustness, the optimizer), given on this command line: "--window comes", "--window
+// and --seed come", or "" when none is. A resumed search takes them all from its checkpoint, so
+// giving one is an error rather than a flag silently ignored.
+std::string checkpointFlagsGiven(const CLI::App& command) {
+  static const char* const kFlags[] = {
+      "project", "--rig", "--clip", "--target", "--animation", "--style", "--population",
+      "--optimizer", "--window", "--no-prior", "--seed", "--harmonics", "--terrain", "--sigma",
+      "--trials", "--trial-push", "--robust-push", "--restart-after", "--start-generations",
+      "--push", "--units", "--up", "--fps", "--keep-glitches", "--mass", "--fixed",
+      "--hinge-limits"};
+  std::vector<std::string> given;
+  for (const char* flag : kFlags)
+    if (command.count(flag) > 0) given.emplace_back(flag[0] == '-' ? flag : "a project");
+  std::string list;
+  for (size_t i = 0; i < given.size(); ++i)
+    list += (i == 0 ? "" : (i + 1 == given.size() ? " and " : ", ")) + given[i];
+  return given.empty() ? "" : list + (given.size() == 1 ? " comes" : " come");
+}
+
 }  // namespace
 
 void addEvolveCommand(CLI::App& app, int& exit_code) {
@@ -614,13 +630,14 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
           "--no-prior", "--trials", "--trial-push", "--robust-push", "--restart-after",
           "--start-generations", "--style-weight"})
       if (command->count(flag) > 0) args->given.emplace_back(flag);
+    const std::string fixed_by_checkpoint = checkpointFlagsGiven(*command);
     if (!args->project.empty() && !args->rig.empty())
       exit_code = fail("give a project or --rig, not both");
-    else if (!args->resume.empty() &&
-             (!args->clip.empty() || !args->target_path.empty() || !args->styles.empty()))
-      exit_code = fail(
-          "--resume continues the search as it was: the rig, clip, styles, window and "
-          "terrain come from the checkpoint");
+    else if (!args->resume.empty() && !fixed_by_checkpoint.empty())
+      exit_code = fail("--resume continues the search as it was: " + fixed_by_checkpoint +
+                       " from the checkpoint (--minutes, --generations, --weights, "
+                       "--style-weight and --threads may change; start a new search to change "
+                       "the rest)");
     else if (!args->batch.empty() && (!args->project.empty() || !args->resume.empty() ||
                                       !args->clip.empty() || !args->target_path.empty()))
       exit_code = fail(

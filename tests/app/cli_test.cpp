@@ -542,6 +542,20 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
                      " --out " + test::quote(dir / "more"));
   EXPECT_NE(spent.exit_code, 0);
   EXPECT_NE(spent.err.find("budget"), std::string::npos) << spent.err << spent.out;
+  // A flag that shapes the search is the checkpoint's: refused by name, not silently ignored.
+  const test::CommandResult shaped =
+      test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
+                     " --generations 3 --window 5 --trials 3 --out " + test::quote(dir / "more"));
+  EXPECT_EQ(shaped.exit_code, 1);
+  EXPECT_EQ(shaped.err,
+            "sinew: --resume continues the search as it was: --window and --trials come from "
+            "the checkpoint (--minutes, --generations, --weights, --style-weight and --threads "
+            "may change; start a new search to change the rest)\n");
+  const test::CommandResult seeded =
+      test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
+                     " --generations 3 --seed 2 --out " + test::quote(dir / "more"));
+  EXPECT_NE(seeded.err.find(": --seed comes from the checkpoint"), std::string::npos)
+      << seeded.err;
   const test::CommandResult more =
       test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
                      " --generations 3 --out " + test::quote(dir / "more"));
