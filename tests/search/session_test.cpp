@@ -412,6 +412,25 @@ TEST(SearchSession, NewWeightsApplyFromTheNextGeneration) {
   EXPECT_EQ(session->problem().weights.energy, 0.0);
 }
 
+// And the kept best is scored again under them: its cost on the new scale, the one every new point
+// is compared with. With its old cost kept, tripling the tracking weight left it unbeatable.
+TEST(SearchSession, NewWeightsScoreTheKeptBestAgain) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  auto session = Session::create(makeProblem(biped, 1.0), small(2, 2)).value();
+  ASSERT_TRUE(session->runGeneration());
+  const FitnessTerms before = session->snapshot()->best_terms;
+  FitnessWeights weights;
+  weights.tracking *= 3.0;
+  session->setWeights(weights);
+  ASSERT_TRUE(session->runGeneration());
+  const auto snap = session->snapshot();
+  const Evaluation again = evaluate(session->problem(), snap->best_point);
+  EXPECT_EQ(snap->best_terms.total, again.terms.total);
+  EXPECT_EQ(snap->best_terms.tracking, again.terms.tracking);
+  EXPECT_GT(snap->best_terms.total, before.total);  // every term is at least as heavy as before
+}
+
 // The issue: on the stepper and the hopper a short run improves the fitness by a printed margin
 // within a few generations.
 TEST(SearchSession, ShortRunsImproveTheStepperAndTheHopper) {

@@ -349,15 +349,34 @@ std::string Session::failureLocked() const {
          "masses and the clip's frame time";
 }
 
-bool Session::runGeneration() {
-  if (finished()) return false;
+// New weights from setWeights() apply here, and the kept best is scored again under them: with
+// its old cost kept, a heavier weight left it out of the new points' reach (every cost rose but
+// its own) and a lighter one let a worse point replace it. False when cancelled while scoring;
+// the next call scores it again.
+bool Session::applyPendingWeights() {
+  std::vector<double> best;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (weights_changed_) {
       problem_.weights = pending_weights_;
       weights_changed_ = false;
+      best_stale_ = !best_point_.empty();
     }
+    if (!best_stale_) return true;
+    best = best_point_;
   }
+  Evaluation e = evaluate(problem_, best, &cancel_, false);
+  if (e.cancelled) return false;
+  std::lock_guard<std::mutex> lock(mutex_);
+  best_terms_ = e.terms;
+  best_joints_ = physics::jointFigures(e.report);
+  best_stale_ = false;
+  return true;
+}
+
+bool Session::runGeneration() {
+  if (finished()) return false;
+  if (!applyPendingWeights()) return false;
   if (started_at_ == 0.0) started_at_ = now();
   const std::vector<std::vector<double>> points = optimizer_->ask();
   const int asking = askingStart(*optimizer_);

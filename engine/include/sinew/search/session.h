@@ -8,7 +8,8 @@
 // - After each generation the session publishes an immutable Snapshot (shared_ptr): per-term
 //   best/mean/worst history, the best point and its terms, the population's points, terms and
 //   (when `record_population`) recorded motions for live replay.
-// - Fitness weights changed with setWeights() apply from the next generation.
+// - Fitness weights changed with setWeights() apply from the next generation, which first scores
+//   the kept best again under them (one evaluation), so that it is compared on the same scale.
 // - checkpoint() is the optimiser's state, the history and the settings between generations;
 //   Session::resume() continues from it to the same result as an uninterrupted run.
 // - The same seed gives the same best point and cost bit for bit, whatever the thread count.
@@ -160,6 +161,7 @@ class Session {
  private:
   Session(Problem problem, const EvolveSettings& settings);
   void workerLoop();
+  bool applyPendingWeights();  // false: cancelled while scoring the best again
   void publish(SessionState state);
   // With mutex_ held: whether kGenerationsWithoutScore generations scored nothing, and why.
   bool nothingFinite() const;
@@ -182,6 +184,7 @@ class Session {
   std::shared_ptr<const Snapshot> snapshot_;
   FitnessWeights pending_weights_;
   bool weights_changed_ = false;
+  bool best_stale_ = false;  // the best's terms are from the weights before the last change
   std::atomic<bool> cancel_{false};
   bool paused_ = false;
   bool stopping_ = false;
