@@ -102,6 +102,14 @@ Result<pipeline::StylePair> parseStyleFlag(const std::string& text) {
   return pair;
 }
 
+// The robustness flags over the search settings: a new search's, or a resumed one's (hardening a
+// gait found without pushes: the session scores its best again under them).
+void applyRobustnessFlags(const EvolveArgs& args, pipeline::SearchSettings& search) {
+  if (args.has("--trials")) search.trials = args.trials;
+  if (args.has("--trial-push")) search.trial_push_m_s = args.trial_push;
+  if (args.has("--robust-push")) search.robust_push_m_s = args.robust_push;
+}
+
 // The project (or --rig and the defaults), then the command line's own flags over it.
 Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
   pipeline::ProjectSettings s;
@@ -124,9 +132,7 @@ Result<pipeline::ProjectSettings> chosenSettings(const EvolveArgs& args) {
   if (args.has("--population")) s.search.population = args.population;
   if (args.has("--seed")) s.search.seed = args.seed;
   if (args.has("--no-prior")) s.search.no_prior = args.no_prior;
-  if (args.has("--trials")) s.search.trials = args.trials;
-  if (args.has("--trial-push")) s.search.trial_push_m_s = args.trial_push;
-  if (args.has("--robust-push")) s.search.robust_push_m_s = args.robust_push;
+  applyRobustnessFlags(args, s.search);
   if (args.has("--restart-after")) s.search.restart_after = args.restart_after;
   if (args.has("--start-generations")) s.search.start_generations = args.start_generations;
   if (args.has("--optimizer")) {
@@ -396,6 +402,7 @@ int runEvolveOn(const EvolveArgs& args, const distributed::Ranks& ranks) {
       if (Status w = applyWeightFlags(args.weights, chosen.value().search.weights); !w.ok())
         return fail(w.message());
       if (args.has("--style-weight")) chosen.value().search.weights.style = args.style_weight;
+      applyRobustnessFlags(args, chosen.value().search);
     }
   } else {
     chosen = chosenSettings(args);
@@ -491,14 +498,14 @@ int runEvolve(const EvolveArgs& args) {
 }
 
 // The flags that shape the search a checkpoint continues (the rig and its import, the body, the
-// window, the robustness, the optimizer), given on this command line: "--window comes", "--window
+// window, the optimizer; not the robustness, which may harden a found gait), given on this command line: "--window comes", "--window
 // and --seed come", or "" when none is. A resumed search takes them all from its checkpoint, so
 // giving one is an error rather than a flag silently ignored.
 std::string checkpointFlagsGiven(const CLI::App& command) {
   static const char* const kFlags[] = {
       "project", "--rig", "--clip", "--target", "--animation", "--style", "--population",
       "--optimizer", "--window", "--no-prior", "--seed", "--harmonics", "--terrain", "--sigma",
-      "--trials", "--trial-push", "--robust-push", "--restart-after", "--start-generations",
+      "--restart-after", "--start-generations",
       "--push", "--units", "--up", "--fps", "--keep-glitches", "--mass", "--fixed",
       "--hinge-limits"};
   std::vector<std::string> given;
@@ -636,8 +643,8 @@ void addEvolveCommand(CLI::App& app, int& exit_code) {
     else if (!args->resume.empty() && !fixed_by_checkpoint.empty())
       exit_code = fail("--resume continues the search as it was: " + fixed_by_checkpoint +
                        " from the checkpoint (--minutes, --generations, --weights, "
-                       "--style-weight and --threads may change; start a new search to change "
-                       "the rest)");
+                       "--style-weight, --threads, --trials, --trial-push and --robust-push may "
+                       "change; start a new search to change the rest)");
     else if (!args->batch.empty() && (!args->project.empty() || !args->resume.empty() ||
                                       !args->clip.empty() || !args->target_path.empty()))
       exit_code = fail(

@@ -545,17 +545,28 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   // A flag that shapes the search is the checkpoint's: refused by name, not silently ignored.
   const test::CommandResult shaped =
       test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
-                     " --generations 3 --window 5 --trials 3 --out " + test::quote(dir / "more"));
+                     " --generations 3 --window 5 --seed 2 --out " + test::quote(dir / "more"));
   EXPECT_EQ(shaped.exit_code, 1);
   EXPECT_EQ(shaped.err,
-            "sinew: --resume continues the search as it was: --window and --trials come from "
-            "the checkpoint (--minutes, --generations, --weights, --style-weight and --threads "
-            "may change; start a new search to change the rest)\n");
-  const test::CommandResult seeded =
+            "sinew: --resume continues the search as it was: --window and --seed come from the "
+            "checkpoint (--minutes, --generations, --weights, --style-weight, --threads, "
+            "--trials, --trial-push and --robust-push may change; start a new search to change "
+            "the rest)\n");
+  const test::CommandResult body =
       test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
-                     " --generations 3 --seed 2 --out " + test::quote(dir / "more"));
-  EXPECT_NE(seeded.err.find(": --seed comes from the checkpoint"), std::string::npos)
-      << seeded.err;
+                     " --generations 3 --mass Hips=30 --out " + test::quote(dir / "more"));
+  EXPECT_NE(body.err.find(": --mass comes from the checkpoint"), std::string::npos) << body.err;
+  // The robustness may change (hardening a found gait); the checkpoint written keeps it.
+  const test::CommandResult hardened =
+      test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
+                     " --generations 3 --trials 2 --trial-push 0.5 --out " +
+                     test::quote(dir / "hard"));
+  ASSERT_EQ(hardened.exit_code, 0) << hardened.err << hardened.out;
+  EXPECT_NE(hardened.out.find("2 runs a point (1 pushed"), std::string::npos) << hardened.out;
+  const nlohmann::json hard =
+      nlohmann::json::parse(test::readText(dir / "hard" / "checkpoint.json"));
+  EXPECT_EQ(hard["problem"]["search"]["trials"], 2);
+  EXPECT_EQ(hard["problem"]["search"]["trial_push_m_s"], 0.5);
   const test::CommandResult more =
       test::runSinew("evolve --resume " + test::quote(out / "checkpoint.json") +
                      " --generations 3 --out " + test::quote(dir / "more"));

@@ -431,6 +431,23 @@ TEST(SearchSession, NewWeightsScoreTheKeptBestAgain) {
   EXPECT_GT(snap->best_terms.total, before.total);  // every term is at least as heavy as before
 }
 
+// A checkpoint resumed with robustness trials (`sinew evolve --resume --trials`: hardening a gait
+// found without pushes) scores its best again under them before the first generation.
+TEST(SearchSession, AResumedBestIsScoredUnderTheProblemAsItIsNow) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  auto first = Session::create(makeProblem(biped, 1.0), small(2, 2)).value();
+  ASSERT_TRUE(first->runGeneration());
+  Problem pushed = makeProblem(biped, 1.0);
+  ASSERT_TRUE(setTrials(pushed, 3, 0.5).ok());
+  auto resumed = Session::resume(pushed, first->checkpoint()).value();
+  ASSERT_TRUE(resumed->runGeneration());
+  const auto snap = resumed->snapshot();
+  const Evaluation again = evaluate(resumed->problem(), snap->best_point);
+  EXPECT_EQ(snap->best_terms.total, again.terms.total);
+  EXPECT_NE(snap->best_terms.total, first->snapshot()->best_terms.total);
+}
+
 // The issue: on the stepper and the hopper a short run improves the fitness by a printed margin
 // within a few generations.
 TEST(SearchSession, ShortRunsImproveTheStepperAndTheHopper) {

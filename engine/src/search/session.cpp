@@ -271,6 +271,9 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
       if (!terms.ok()) return Status::error("checkpoint: best_terms: " + terms.message());
       session->best_terms_ = terms.value();
     }
+    // Scored again before the first generation (applyPendingWeights): the problem may push it
+    // differently now (`sinew evolve --resume --trials`), and its joint figures are not kept.
+    session->best_stale_ = !session->best_point_.empty();
     session->wall_offset_s_ = checkpoint.at("wall_s").get<double>();
     session->publish(SessionState::kReady);
     return session;
@@ -349,10 +352,10 @@ std::string Session::failureLocked() const {
          "masses and the clip's frame time";
 }
 
-// New weights from setWeights() apply here, and the kept best is scored again under them: with
-// its old cost kept, a heavier weight left it out of the new points' reach (every cost rose but
-// its own) and a lighter one let a worse point replace it. False when cancelled while scoring;
-// the next call scores it again.
+// New weights from setWeights() apply here, and the kept best is scored again under them (and
+// after a resume, under the problem as it is now): with its old cost kept, a heavier weight left
+// it out of the new points' reach (every cost rose but its own) and a lighter one let a worse
+// point replace it. False when cancelled while scoring; the next call scores it again.
 bool Session::applyPendingWeights() {
   std::vector<double> best;
   {

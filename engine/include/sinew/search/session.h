@@ -131,7 +131,9 @@ using GenerationEvaluator = std::function<std::vector<Evaluation>(
 class Session {
  public:
   static Result<std::unique_ptr<Session>> create(Problem problem, const EvolveSettings& settings);
-  // From checkpoint(); the problem must be built as it was (the same rig, clip and settings).
+  // From checkpoint(); the problem must be built as it was (the same rig, clip and genome). Its
+  // robustness (trials, pushes) may differ: the kept best is scored again under it before the
+  // first generation.
   static Result<std::unique_ptr<Session>> resume(Problem problem, const nlohmann::json& checkpoint);
   ~Session();
   Session(const Session&) = delete;
@@ -184,7 +186,7 @@ class Session {
   std::shared_ptr<const Snapshot> snapshot_;
   FitnessWeights pending_weights_;
   bool weights_changed_ = false;
-  bool best_stale_ = false;  // the best's terms are from the weights before the last change
+  bool best_stale_ = false;  // the best's terms are from other weights or another problem
   std::atomic<bool> cancel_{false};
   bool paused_ = false;
   bool stopping_ = false;
