@@ -10,6 +10,11 @@
 #   [SEEDS="1 2 ..."] bench/real_physics_bench.sh [SINEW_BINARY] [MINUTES] [OUT_DIR] [CLIP...]
 # EVOLVE_ARGS (default none): more `sinew evolve` options for every search, e.g.
 #   EVOLVE_ARGS="--trials 5 --trial-push 0.66" for robustness trials at 40 N s on a 60 kg figure.
+# HARDEN_ARGS (default none): robustness options for a second, hardening search of MINUTES more:
+#   each search resumed (`sinew evolve --resume DIR/checkpoint.json HARDEN_ARGS`) and its best
+#   measured again in a "(hardened)" row, e.g. HARDEN_ARGS="--trials 5 --trial-push 0.66".
+# FROM (default none): with HARDEN_ARGS, harden the searches of an earlier run of this bench
+#   (FROM/<clip>/) instead of searching again; their own rows are not printed.
 # SEEDS (default 1): one search, and one row, per seed and clip. One search's outcome varies with
 # its seed about as much as any controller change measured on the dog (docs/physics.md), so judge
 # a change by several.
@@ -37,21 +42,11 @@ echo "| clip | links | DOF | mass kg | up (10 s) | up (30 s) | distance m | spee
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 read -r -a seeds <<< "${SEEDS:-1}"
 read -r -a evolve_args <<< "${EVOLVE_ARGS:-}"
-for clip in "${clips[@]}"; do
-for seed in "${seeds[@]}"; do
-  name=$(basename "$clip" .bvh)
-  dir="$out/$name"
-  if [ ${#seeds[@]} -gt 1 ]; then
-    dir="$out/$name.seed$seed"
-    name="$name (seed $seed)"
-  fi
-  start=$(date +%s.%N)
-  "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed "$seed" --out "$dir" \
-      "${evolve_args[@]}" > "$dir.evolve.log" 2>&1 || {
-    echo "| $name | - | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$dir.evolve.log") |"
-    continue
-  }
-  wall=$(python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.0f}')" "$start" "$(date +%s.%N)")
+read -r -a harden_args <<< "${HARDEN_ARGS:-}"
+# One row: replays of DIR/best.json (10 s, 30 s), the clip's analysis, pushes, and the figures.
+#   row NAME DIR WALL_S CLIP
+row() {
+  local name=$1 dir=$2 wall=$3 clip=$4
   "$sinew" simulate --rig "$clip" --controller "$dir/best.json" --seconds 10 --json "$dir/replay10.json" > "$dir.replay10.log" 2>&1
   "$sinew" simulate --rig "$clip" --controller "$dir/best.json" --seconds 30 --json "$dir/replay30.json" > "$dir.replay30.log" 2>&1
   "$sinew" analyze "$clip" --json "$dir/analysis.json" > /dev/null 2>&1 || true
@@ -87,5 +82,44 @@ print(f"| {name} | {links} | {dof} | {mass} | {r10['seconds']:.1f} s | {r30['sec
       f"{clip_track:.1f} ({r10['track_err_rad_rms'] * 57.29578:.1f}) | {evals.group(1) if evals else '?'} | {wall} | {pushes} | {at_aim} | "
       f"{r10.get('fall_reason', '') if r10['fell'] else '-'} |")
 PY
+}
+
+seconds_since() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.0f}')" "$1" "$(date +%s.%N)"; }
+
+for clip in "${clips[@]}"; do
+for seed in "${seeds[@]}"; do
+  name=$(basename "$clip" .bvh)
+  dir="$out/$name"
+  if [ ${#seeds[@]} -gt 1 ]; then
+    dir="$out/$name.seed$seed"
+    name="$name (seed $seed)"
+  fi
+  if [ -n "${FROM:-}" ]; then  # an earlier run's search, not searched again
+    dir="$FROM/${dir#"$out"/}"
+    wall=-
+  else
+    start=$(date +%s.%N)
+    "$sinew" evolve --rig "$clip" --minutes "$minutes" --seed "$seed" --out "$dir" \
+        "${evolve_args[@]}" > "$dir.evolve.log" 2>&1 || {
+      echo "| $name | - | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$dir.evolve.log") |"
+      continue
+    }
+    wall=$(seconds_since "$start")
+    row "$name" "$dir" "$wall" "$clip"
+  fi
+  # Hardened: a gait that stands its 10 s replay, searched MINUTES more with HARDEN_ARGS.
+  if [ ${#harden_args[@]} -gt 0 ] &&
+     python3 -c "import json, sys; sys.exit(json.load(open(sys.argv[1]))['fell'])" "$dir/replay10.json"; then
+    hard="$out/$(basename "$dir").hardened"
+    total=$(python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['settings']['minutes'] + float(sys.argv[2]))" \
+        "$dir/checkpoint.json" "$minutes")
+    start=$(date +%s.%N)
+    "$sinew" evolve --resume "$dir/checkpoint.json" --minutes "$total" --out "$hard" \
+        "${harden_args[@]}" > "$hard.evolve.log" 2>&1 || {
+      echo "| $name (hardened) | - | - | - | - | - | - | - | - | - | - | - | evolve failed: $(tail -1 "$hard.evolve.log") |"
+      continue
+    }
+    row "$name (hardened)" "$hard" "$(seconds_since "$start")" "$clip"
+  fi
 done
 done
