@@ -429,6 +429,21 @@ TEST(SearchSession, NewWeightsScoreTheKeptBestAgain) {
   EXPECT_EQ(snap->best_terms.total, again.terms.total);
   EXPECT_EQ(snap->best_terms.tracking, again.terms.tracking);
   EXPECT_GT(snap->best_terms.total, before.total);  // every term is at least as heavy as before
+  // So are the bests the optimiser compares with: the portfolio's and its trying member's (the
+  // costs that choose the start that goes on), each its point's cost under the new weights.
+  // The generation after the change may have beaten them: only then is a cost a new point's.
+  const nlohmann::json optimizer = session->checkpoint()["optimizer"];
+  ASSERT_EQ(optimizer["kind"], "portfolio");
+  std::vector<nlohmann::json> states = {optimizer};
+  for (const nlohmann::json& m : optimizer["members"]) states.push_back(m);
+  int scored = 0;
+  for (const nlohmann::json& state : states) {
+    if (state["best"].empty()) continue;
+    const Evaluation cost = evaluate(session->problem(), state["best"].get<std::vector<double>>());
+    EXPECT_EQ(state["best_cost"].get<double>(), cost.terms.total);
+    ++scored;
+  }
+  EXPECT_GE(scored, 2);
 }
 
 // A checkpoint resumed with robustness trials (`sinew evolve --resume --trials`: hardening a gait

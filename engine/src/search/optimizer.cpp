@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sinew/core/assert.h"
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
 #include "sinew/search/portfolio.h"
@@ -43,6 +44,16 @@ Status Optimizer::tell(std::span<const double> costs) {
   ++generation_;
   advance(costs, order);
   return {};
+}
+
+std::vector<std::vector<double>> Optimizer::bests() const {
+  if (best_.empty()) return {};
+  return {best_};
+}
+
+void Optimizer::rescore(std::span<const double> costs) {
+  SINEW_ASSERT(costs.size() == (best_.empty() ? 0u : 1u), "Optimizer::rescore: one cost a best");
+  if (!best_.empty()) best_cost_ = costs[0];
 }
 
 json Optimizer::saveState() const {

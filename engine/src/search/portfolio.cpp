@@ -69,6 +69,24 @@ void Portfolio::nextMember() {
   current_ = chosen_;
 }
 
+std::vector<std::vector<double>> Portfolio::bests() const {
+  std::vector<std::vector<double>> all = Optimizer::bests();
+  for (const auto& m : members_)
+    for (std::vector<double>& b : m->bests()) all.push_back(std::move(b));
+  return all;
+}
+
+void Portfolio::rescore(std::span<const double> costs) {
+  size_t used = Optimizer::bests().size();
+  Optimizer::rescore(costs.first(used));
+  for (const auto& m : members_) {
+    const size_t n = m->bests().size();
+    m->rescore(costs.subspan(used, n));
+    used += n;
+  }
+  SINEW_ASSERT(used == costs.size(), "Portfolio::rescore: one cost a best");
+}
+
 void Portfolio::keep(int i) {
   SINEW_ASSERT(chosen_ < 0 && i >= 0 && i < members(), "Portfolio::keep: a member, once");
   chosen_ = current_ = i;

@@ -352,12 +352,14 @@ std::string Session::failureLocked() const {
          "masses and the clip's frame time";
 }
 
-// New weights from setWeights() apply here, and the kept best is scored again under them (and
-// after a resume, under the problem as it is now): with its old cost kept, a heavier weight left
-// it out of the new points' reach (every cost rose but its own) and a lighter one let a worse
-// point replace it. False when cancelled while scoring; the next call scores it again.
+// New weights from setWeights() apply here, and the kept bests are scored again under them (and
+// after a resume, under the problem as it is now): the session's and those the optimiser
+// compares with (a portfolio's members', which choose the start that goes on). With their old
+// costs kept, a heavier weight left them out of the new points' reach (every cost rose but
+// theirs) and a lighter one let a worse point replace them. False when cancelled while scoring;
+// the next call scores them again.
 bool Session::applyPendingWeights() {
-  std::vector<double> best;
+  std::vector<std::vector<double>> points;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (weights_changed_) {
@@ -366,13 +368,19 @@ bool Session::applyPendingWeights() {
       best_stale_ = !best_point_.empty();
     }
     if (!best_stale_) return true;
-    best = best_point_;
+    points = optimizer_->bests();
+    points.push_back(best_point_);
   }
-  Evaluation e = evaluate(problem_, best, &cancel_, false);
-  if (e.cancelled) return false;
+  const int threads = settings_.threads > 0 ? settings_.threads : hardwareThreads();
+  std::vector<Evaluation> results = evaluateAll(problem_, points, threads, &cancel_, false);
+  for (const Evaluation& e : results)
+    if (e.cancelled) return false;
+  std::vector<double> costs(results.size() - 1);
+  for (size_t i = 0; i < costs.size(); ++i) costs[i] = results[i].terms.total;
   std::lock_guard<std::mutex> lock(mutex_);
-  best_terms_ = e.terms;
-  best_joints_ = physics::jointFigures(e.report);
+  optimizer_->rescore(costs);
+  best_terms_ = results.back().terms;
+  best_joints_ = physics::jointFigures(results.back().report);
   best_stale_ = false;
   return true;
 }

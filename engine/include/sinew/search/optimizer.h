@@ -53,6 +53,11 @@ class Optimizer {
   double bestCost() const { return best_cost_; }          // +inf until a finite cost has been told
   int generation() const { return generation_; }          // generations told
   long long evaluations() const { return evaluations_; }  // costs told
+  // The fitness changed (new weights, a resumed problem): the best points this optimiser compares
+  // new costs with (its own, then any it holds for its parts: a portfolio's members' bests), and
+  // rescore() takes their costs under the new fitness, in the same order. Nothing else moves.
+  virtual std::vector<std::vector<double>> bests() const;
+  virtual void rescore(std::span<const double> costs);
   // The optimiser's own stopping test (CMA-ES: tolerances reached and no restart left). The
   // caller's budget is the other end; asking and telling after convergence stays valid.
   virtual bool converged() const = 0;

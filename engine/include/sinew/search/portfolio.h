@@ -46,6 +46,9 @@ class Portfolio final : public Optimizer {
   // and 0 <= i < members().
   void keep(int i);
   const Optimizer& member(int i) const { return *members_[static_cast<size_t>(i)]; }
+  // Its own best, then each member's (what nextMember() compares when the trials end).
+  std::vector<std::vector<double>> bests() const override;
+  void rescore(std::span<const double> costs) override;
 
  private:
   Portfolio(int dimension, std::vector<std::unique_ptr<Optimizer>> members, int trial_generations);
