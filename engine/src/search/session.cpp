@@ -271,7 +271,7 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
       if (!terms.ok()) return Status::error("checkpoint: best_terms: " + terms.message());
       session->best_terms_ = terms.value();
     }
-    // Scored again before the first generation (applyPendingWeights): the problem may push it
+    // Scored again before the first generation (applyFitnessChange): the problem may push it
     // differently now (`sinew evolve --resume --trials`), and its joint figures are not kept.
     session->best_stale_ = !session->best_point_.empty();
     session->wall_offset_s_ = checkpoint.at("wall_s").get<double>();
@@ -358,7 +358,7 @@ std::string Session::failureLocked() const {
 // costs kept, a heavier weight left them out of the new points' reach (every cost rose but
 // theirs) and a lighter one let a worse point replace them. False when cancelled while scoring;
 // the next call scores them again.
-bool Session::applyPendingWeights() {
+bool Session::applyFitnessChange() {
   std::vector<std::vector<double>> points;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -371,23 +371,33 @@ bool Session::applyPendingWeights() {
     points = optimizer_->bests();
     points.push_back(best_point_);
   }
+  // One point often stands in several places (the session's best is usually the optimiser's, a
+  // portfolio's is one of its members'): each distinct point is evaluated once.
+  std::vector<std::vector<double>> distinct;
+  std::vector<size_t> which(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    auto found = std::find(distinct.begin(), distinct.end(), points[i]);
+    which[i] = static_cast<size_t>(found - distinct.begin());
+    if (found == distinct.end()) distinct.push_back(points[i]);
+  }
   const int threads = settings_.threads > 0 ? settings_.threads : hardwareThreads();
-  std::vector<Evaluation> results = evaluateAll(problem_, points, threads, &cancel_, false);
+  std::vector<Evaluation> results = evaluateAll(problem_, distinct, threads, &cancel_, false);
   for (const Evaluation& e : results)
     if (e.cancelled) return false;
-  std::vector<double> costs(results.size() - 1);
-  for (size_t i = 0; i < costs.size(); ++i) costs[i] = results[i].terms.total;
+  std::vector<double> costs(points.size() - 1);
+  for (size_t i = 0; i < costs.size(); ++i) costs[i] = results[which[i]].terms.total;
+  const Evaluation& best = results[which.back()];
   std::lock_guard<std::mutex> lock(mutex_);
   optimizer_->rescore(costs);
-  best_terms_ = results.back().terms;
-  best_joints_ = physics::jointFigures(results.back().report);
+  best_terms_ = best.terms;
+  best_joints_ = physics::jointFigures(best.report);
   best_stale_ = false;
   return true;
 }
 
 bool Session::runGeneration() {
   if (finished()) return false;
-  if (!applyPendingWeights()) return false;
+  if (!applyFitnessChange()) return false;
   if (started_at_ == 0.0) started_at_ = now();
   const std::vector<std::vector<double>> points = optimizer_->ask();
   const int asking = askingStart(*optimizer_);

@@ -9,7 +9,8 @@
 //   best/mean/worst history, the best point and its terms, the population's points, terms and
 //   (when `record_population`) recorded motions for live replay.
 // - Fitness weights changed with setWeights() apply from the next generation, which first scores
-//   the kept best again under them (one evaluation), so that it is compared on the same scale.
+//   the kept bests (the session's and the optimiser's) again under them, so that new points are
+//   compared with them on the same scale.
 // - checkpoint() is the optimiser's state, the history and the settings between generations;
 //   Session::resume() continues from it to the same result as an uninterrupted run.
 // - The same seed gives the same best point and cost bit for bit, whatever the thread count.
@@ -163,7 +164,8 @@ class Session {
  private:
   Session(Problem problem, const EvolveSettings& settings);
   void workerLoop();
-  bool applyPendingWeights();  // false: cancelled while scoring the best again
+  // New weights applied and stale bests scored again; false: cancelled while scoring.
+  bool applyFitnessChange();
   void publish(SessionState state);
   // With mutex_ held: whether kGenerationsWithoutScore generations scored nothing, and why.
   bool nothingFinite() const;
