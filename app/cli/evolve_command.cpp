@@ -498,16 +498,16 @@ int runEvolve(const EvolveArgs& args) {
 }
 
 // The flags that shape the search a checkpoint continues (the rig and its import, the body, the
-// window, the optimizer; not the robustness, which may harden a found gait), given on this command line: "--window comes", "--window
-// and --seed come", or "" when none is. A resumed search takes them all from its checkpoint, so
-// giving one is an error rather than a flag silently ignored.
+// window, the optimizer; not the robustness, which may harden a found gait), given on this
+// command line: "--window comes", "--window and --seed come", or "" when none is. A resumed
+// search takes them all from its checkpoint, so giving one is an error rather than a flag
+// silently ignored.
 std::string checkpointFlagsGiven(const CLI::App& command) {
   static const char* const kFlags[] = {
       "project", "--rig", "--clip", "--target", "--animation", "--style", "--population",
       "--optimizer", "--window", "--no-prior", "--seed", "--harmonics", "--terrain", "--sigma",
-      "--restart-after", "--start-generations",
-      "--push", "--units", "--up", "--fps", "--keep-glitches", "--mass", "--fixed",
-      "--hinge-limits"};
+      "--restart-after", "--start-generations", "--push", "--units", "--up", "--fps",
+      "--keep-glitches", "--mass", "--fixed", "--hinge-limits"};
   std::vector<std::string> given;
   for (const char* flag : kFlags)
     if (command.count(flag) > 0) given.emplace_back(flag[0] == '-' ? flag : "a project");
