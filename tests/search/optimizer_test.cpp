@@ -491,6 +491,32 @@ TEST(SearchCheckpoint, LocalRestartsStartAgainAtTheInitialMeanAfterAStall) {
   expectCheckpointIsSeamless(cmaesFactory(n, local), rastrigin(shiftedOptimum(n)), "local");
 }
 
+// A changed fitness (Optimizer::rescore) begins the stall count again: the run's best from before
+// is on another scale, and a heavier weight would otherwise read as generations without a better
+// best. Flat costs 1.0 for three generations, then 2.0 for every point, the best rescored to 2.0:
+// the stall counts from generation 4 (restart after 7), not from generation 1 (restart after 4).
+TEST(SearchCheckpoint, ARescoredBestBeginsTheStallCountAgain) {
+  const int n = 6;
+  CmaesSettings local;
+  local.max_restarts = 1;
+  local.stall_generations = 3;
+  std::unique_ptr<Cmaes> c = cmaes(n, local);
+  const CostFunction before = [](const std::vector<double>&) { return 1.0; };
+  const CostFunction after = [](const std::vector<double>&) { return 2.0; };
+  for (int g = 1; g <= 3; ++g) step(*c, before);
+  ASSERT_EQ(c->bests().size(), 1u);
+  const double rescored[] = {after(c->bests()[0])};
+  c->rescore(rescored);
+  EXPECT_EQ(c->bestCost(), 2.0);
+  std::vector<int> restarted_after;
+  for (int g = 4; g <= 8; ++g) {
+    const int restarts = c->restarts();
+    step(*c, after);
+    if (c->restarts() != restarts) restarted_after.push_back(g);
+  }
+  EXPECT_EQ(restarted_after, (std::vector<int>{7}));
+}
+
 // A state Optimizer::load must refuse, with a message naming `field`.
 void expectRefused(const json& state, const std::string& field) {
   Result<std::unique_ptr<Optimizer>> loaded = Optimizer::load(state);

@@ -174,6 +174,15 @@ void Cmaes::restart(const std::vector<double>& internal_mean) {
   stop_.clear();
 }
 
+void Cmaes::rescore(std::span<const double> costs) {
+  const bool moved = !best().empty() && costs[0] != bestCost();  // a resume of the same problem: no
+  Optimizer::rescore(costs);
+  if (!moved) return;
+  history_.clear();
+  run_best_ = std::numeric_limits<double>::infinity();
+  run_best_at_ = run_generation_;
+}
+
 void Cmaes::sample() {
   const int n = dimension();
   const size_t un = static_cast<size_t>(n);

@@ -74,6 +74,9 @@ class Cmaes final : public Optimizer {
 
   const char* kind() const override { return "cmaes"; }
   bool converged() const override { return !stop_.empty() && restarts_ >= settings_.max_restarts; }
+  // The best's new cost; when it moved, the run's stall count and cost history begin again:
+  // costs from before the change are on another scale (a heavier weight would read as a stall).
+  void rescore(std::span<const double> costs) override;
 
   const CmaesSettings& settings() const { return settings_; }
   std::vector<double> mean() const;        // (n) the distribution's mean mapped into [0, 1]

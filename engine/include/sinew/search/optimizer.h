@@ -55,7 +55,8 @@ class Optimizer {
   long long evaluations() const { return evaluations_; }  // costs told
   // The fitness changed (new weights, a resumed problem): the best points this optimiser compares
   // new costs with (its own, then any it holds for its parts: a portfolio's members' bests), and
-  // rescore() takes their costs under the new fitness, in the same order. Nothing else moves.
+  // rescore() takes their costs under the new fitness, in the same order. Nothing else moves
+  // but what compares costs across generations (CMA-ES's stall count and history begin again).
   virtual std::vector<std::vector<double>> bests() const;
   virtual void rescore(std::span<const double> costs);
   // The optimiser's own stopping test (CMA-ES: tolerances reached and no restart left). The
