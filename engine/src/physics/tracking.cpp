@@ -453,6 +453,7 @@ Result<std::unique_ptr<TrackingController>> TrackingController::create(
     if (plan.links[li].foot) c->feet_.push_back(static_cast<int>(li));
 
   c->pairs_ = findLegPairs(plan);
+  c->last_down_.assign(c->pairs_.size(), -1);
   c->balance_ = !c->pairs_.empty();
   c->setForward(target);
   c->target_ = standing;
@@ -575,29 +576,38 @@ void TrackingController::applyFeedback(const World& world) {
   world.linkTransforms(transforms);
   const std::vector<glm::dquat> target_world = linkWorldRotations(*plan_, motion_);
   for (size_t p = 0; p < pairs_.size(); ++p) {
-    const int stance = balancePair(world, pairs_[p], transforms, target_world);
+    const int stance = balancePair(world, p, transforms, target_world);
     if (p == 0) stance_ = stance;
   }
 }
 
-int TrackingController::balancePair(const World& world, const LegPair& pair,
+int TrackingController::balancePair(const World& world, size_t p,
                                     const std::vector<glm::dmat4>& transforms,
                                     const std::vector<glm::dquat>& target_world) {
   const BodyPlan& plan = *plan_;
+  const LegPair& pair = pairs_[p];
   const std::vector<std::uint8_t>& contacts = world.linkContacts();
   const std::vector<double>& forces = world.linkNormalForces();
   const size_t foot0 = static_cast<size_t>(feet_[static_cast<size_t>(pair.feet[0])]);
   const size_t foot1 = static_cast<size_t>(feet_[static_cast<size_t>(pair.feet[1])]);
   const bool down0 = contacts[foot0] > 0;
   const bool down1 = contacts[foot1] > 0;
-  // In the air a pair waits for a foot to land; a leg alone is placed there (below).
-  const bool flight = !down0 && !down1;
-  if (flight && !pair.alone()) return -1;
   // One foot down: it is the stance foot, the other swings. Both down: the one carrying more
-  // holds the torso and nothing swings.
+  // holds the torso and nothing swings. Both up on a body with one pair (a run's flight, a walk's
+  // stance foot leaving before the swing foot lands, a body a push has lifted): the foot last
+  // down stands in as the stance foot, and the swing foot goes on being placed to catch the body
+  // until it lands (a placement dropped in the air swung back to the target's within the 75 ms a
+  // pushed walk spent off the ground, and the foot landed where it could not catch it); nothing
+  // holds the base. With two pairs or more, a pair in the air waits for a foot to land (placed
+  // there, the unevolved trot fell sooner at every gain tried). A leg alone is placed whenever it
+  // is in the air (below).
+  const bool flight = !down0 && !down1;
+  if (flight && !pair.alone() && (pairs_.size() > 1 || last_down_[p] < 0)) return -1;
   int side_down = down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1);
   const bool swinging = side_down >= 0;
+  if (flight && !pair.alone()) side_down = last_down_[p];
   if (side_down < 0) side_down = forces[foot0] >= forces[foot1] ? 0 : 1;
+  if (!flight) last_down_[p] = side_down;
   const size_t stance = static_cast<size_t>(pair.feet[static_cast<size_t>(side_down)]);
 
   auto rotationOf = [&](int li) {
@@ -629,7 +639,7 @@ int TrackingController::balancePair(const World& world, const LegPair& pair,
   const Placement placement{base_now, base_wanted, d - d_ref, v - v_ref,
                             yaw(heading_now) * glm::dvec3(0.0, 0.0, 1.0)};
   if (flight) {  // Raibert's hopper: the leg in the air lands where it catches the body
-    placeSwingFoot(pair.hips[0], placement);
+    placeSwingFoot(pair.hips[static_cast<size_t>(pair.alone() ? 0 : 1 - side_down)], placement);
     return -1;
   }
 

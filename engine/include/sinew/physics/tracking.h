@@ -205,8 +205,8 @@ class TrackingController {
   TrackingController() = default;
   void liftSwingFeet(double time);
   void applyFeedback(const World& world);
-  // One pair's feedback; returns its stance foot (index into feet_), -1 with no foot down.
-  int balancePair(const World& world, const LegPair& pair, const std::vector<glm::dmat4>& transforms,
+  // Pair p's feedback; returns its stance foot (index into feet_), -1 with no foot down.
+  int balancePair(const World& world, size_t p, const std::vector<glm::dmat4>& transforms,
                   const std::vector<glm::dquat>& target_world);
   // Where a swing foot should land, from one pair's frame this step (see balancePair).
   struct Placement {
@@ -236,6 +236,7 @@ class TrackingController {
   std::vector<glm::dvec3> translations_;  // (joints) the target's translations at the present time
   std::vector<int> feet_;                 // foot links
   std::vector<LegPair> pairs_;            // the legs that balance, in pairs
+  std::vector<int> last_down_;            // (pairs) the side (0, 1) last down, -1 before any
   bool balance_ = false;
   int stance_ = -1;
   glm::dvec3 reference_com_{0.0};           // the target pose's centre of mass, world m
