@@ -87,6 +87,45 @@ std::vector<glm::dvec3> linkOrigins(const BodyPlan& plan, const LinkPose& pose) 
   return origins;
 }
 
+// A world of c's first pose (raised by `lift` metres) moving 1 m/s faster than the target along
+// its travel; `travel` receives that direction. Null (a test failure) if refused.
+std::unique_ptr<World> worldAheadOfTarget(const test_util::Character& c, MotionState& state,
+                                          glm::dvec3& travel, double lift = 0.0) {
+  state = targetState(c.plan, c.asset.skeleton, c.target, 0.0);
+  state.pose.base_position.y += lift;
+  std::unique_ptr<World> world = World::create(c.plan, state.pose).value();
+  travel = travelOf(state);
+  if (!world->setVelocities(state.base_linear + travel, state.base_angular,
+                            state.joint_velocities).ok()) {
+    ADD_FAILURE() << "setVelocities refused";
+    return nullptr;
+  }
+  return world;
+}
+
+// A swing leg's placement: the leg (hip to foot) in the servos' target, on the base as it is, and
+// in the motion's, on the motion's base, and the angle between them, rad.
+struct LegTurn {
+  glm::dvec3 placed, tracked;
+  double turned = 0.0;
+};
+LegTurn legTurn(const BodyPlan& plan, const World& world, const TrackingController& controller,
+                int hip, int foot) {
+  std::vector<glm::dmat4> transforms(plan.links.size());
+  world.linkTransforms(transforms);
+  auto leg = [&](LinkPose pose, const glm::dquat& base) {
+    pose.base_rotation = base;
+    const std::vector<glm::dvec3> o = linkOrigins(plan, pose);
+    return o[static_cast<size_t>(foot)] - o[static_cast<size_t>(hip)];
+  };
+  LegTurn t;
+  t.placed = leg(controller.target(), glm::normalize(glm::quat_cast(glm::dmat3(transforms[0]))));
+  t.tracked = leg(controller.motionTarget(), controller.motionTarget().base_rotation);
+  t.turned = std::acos(
+      std::clamp(glm::dot(glm::normalize(t.placed), glm::normalize(t.tracked)), -1.0, 1.0));
+  return t;
+}
+
 std::vector<int> footLinks(const BodyPlan& plan) {
   std::vector<int> feet;
   for (size_t li = 0; li < plan.links.size(); ++li)
@@ -168,11 +207,10 @@ TEST(TrackingController, SwingLiftRaisesTheSwingFootStraightUp) {
 TEST(TrackingController, StanceGainsMoveThePlantedFootAgainstTheVelocityError) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
-  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
-  const glm::dvec3 travel = travelOf(state);
-  ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
-                                   state.joint_velocities).ok());
+  MotionState state;
+  glm::dvec3 travel;
+  std::unique_ptr<World> world = worldAheadOfTarget(biped, state, travel);
+  ASSERT_TRUE(world);
   std::unique_ptr<TrackingController> made = oneTermController(
       *world, biped, state.pose, [](BalanceGains& g) { g.stance_sagittal = 0.05; });
   ASSERT_TRUE(made);
@@ -786,12 +824,10 @@ TEST(TrackingController, AHoppersOneLegBalancesAlone) {
 TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
   const test_util::Character hopper = test_util::loadCharacter("hopper_hop.bvh");
   ASSERT_FALSE(hopper.plan.links.empty());
-  MotionState state = targetState(hopper.plan, hopper.asset.skeleton, hopper.target, 0.0);
-  state.pose.base_position.y += 0.4;
-  std::unique_ptr<World> world = World::create(hopper.plan, state.pose).value();
-  const glm::dvec3 travel = travelOf(state);
-  ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
-                                   state.joint_velocities).ok());
+  MotionState state;
+  glm::dvec3 travel;
+  std::unique_ptr<World> world = worldAheadOfTarget(hopper, state, travel, 0.4);
+  ASSERT_TRUE(world);
   std::unique_ptr<TrackingController> made = oneTermController(
       *world, hopper, state.pose, [](BalanceGains& g) { g.cv_sagittal = 0.2; });
   ASSERT_TRUE(made);
@@ -811,19 +847,7 @@ TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
       ASSERT_EQ(world->linkContacts()[static_cast<size_t>(foot)], 0) << "landed at step " << k;
       // The hip's target is relative to the body as it is (its base turns in the air), the
       // motion's relative to the motion's base.
-      std::vector<glm::dmat4> transforms(hopper.plan.links.size());
-      world->linkTransforms(transforms);
-      auto leg = [&](LinkPose pose, const glm::dquat& base) {
-        pose.base_rotation = base;
-        const std::vector<glm::dvec3> o = linkOrigins(hopper.plan, pose);
-        return o[static_cast<size_t>(foot)] - o[static_cast<size_t>(hip)];
-      };
-      const glm::dvec3 placed =
-          leg(controller.target(), glm::normalize(glm::quat_cast(glm::dmat3(transforms[0]))));
-      const glm::dvec3 tracked =
-          leg(controller.motionTarget(), controller.motionTarget().base_rotation);
-      const double turned = std::acos(std::clamp(
-          glm::dot(glm::normalize(placed), glm::normalize(tracked)), -1.0, 1.0));
+      const auto [placed, tracked, turned] = legTurn(hopper.plan, *world, controller, hip, foot);
       std::printf("step %d: velocity error %.2f m/s forward; leg turned %.3f rad (asked %.3f), "
                   "foot %.1f cm forward\n",
                   k, error, turned, 0.2 * error, 100.0 * glm::dot(placed - tracked, travel));
@@ -845,11 +869,10 @@ TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
 TEST(TrackingController, APairInTheAirGoesOnPlacingTheSwingFoot) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
-  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
-  const glm::dvec3 travel = travelOf(state);
-  ASSERT_TRUE(world->setVelocities(state.base_linear + travel, state.base_angular,
-                                   state.joint_velocities).ok());
+  MotionState state;
+  glm::dvec3 travel;
+  std::unique_ptr<World> world = worldAheadOfTarget(biped, state, travel);
+  ASSERT_TRUE(world);
   std::unique_ptr<TrackingController> made = oneTermController(
       *world, biped, state.pose, [](BalanceGains& g) { g.cv_sagittal = 0.2; });
   ASSERT_TRUE(made);
@@ -880,19 +903,7 @@ TEST(TrackingController, APairInTheAirGoesOnPlacingTheSwingFoot) {
     for (int f : controller.feet())
       flight = flight && world->linkContacts()[static_cast<size_t>(f)] == 0;
     if (!flight) continue;
-    std::vector<glm::dmat4> transforms(biped.plan.links.size());
-    world->linkTransforms(transforms);
-    auto leg = [&](LinkPose pose, const glm::dquat& base) {
-      pose.base_rotation = base;
-      const std::vector<glm::dvec3> o = linkOrigins(biped.plan, pose);
-      return o[static_cast<size_t>(foot)] - o[static_cast<size_t>(hip)];
-    };
-    const glm::dvec3 placed =
-        leg(controller.target(), glm::normalize(glm::quat_cast(glm::dmat3(transforms[0]))));
-    const glm::dvec3 tracked =
-        leg(controller.motionTarget(), controller.motionTarget().base_rotation);
-    const double turned = std::acos(
-        std::clamp(glm::dot(glm::normalize(placed), glm::normalize(tracked)), -1.0, 1.0));
+    const auto [placed, tracked, turned] = legTurn(biped.plan, *world, controller, hip, foot);
     std::printf("step %d in the air: velocity error %.2f m/s forward; swing leg turned %.3f rad "
                 "(asked %.3f), foot %.1f cm forward\n",
                 k, error, turned, 0.2 * error, 100.0 * glm::dot(placed - tracked, travel));
