@@ -602,10 +602,10 @@ int TrackingController::balancePair(const World& world, size_t p,
   // there, the unevolved trot fell sooner at every gain tried). A leg alone is placed whenever it
   // is in the air (below).
   const bool flight = !down0 && !down1;
-  if (flight && !pair.alone() && (pairs_.size() > 1 || last_down_[p] < 0)) return -1;
-  int side_down = down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1);
-  const bool swinging = side_down >= 0;
-  if (flight && !pair.alone()) side_down = last_down_[p];
+  const bool pair_in_air = flight && !pair.alone();
+  if (pair_in_air && (pairs_.size() > 1 || last_down_[p] < 0)) return -1;
+  int side_down = pair_in_air ? last_down_[p] : (down0 && !down1 ? 0 : (down1 && !down0 ? 1 : -1));
+  const bool swinging = side_down >= 0 && !flight;
   if (side_down < 0) side_down = forces[foot0] >= forces[foot1] ? 0 : 1;
   if (!flight) last_down_[p] = side_down;
   const size_t stance = static_cast<size_t>(pair.feet[static_cast<size_t>(side_down)]);
