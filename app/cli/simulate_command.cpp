@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <numbers>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -185,7 +186,8 @@ std::string traceCsv(const physics::SimulationReport& r) {
   }
   for (size_t li = 1; li < r.links.size(); ++li) {
     const std::string link = toUtf8(r.links[li]);
-    csv << ',' << csvCell(link + "_torque_nm") << ',' << csvCell(link + "_at_limit");
+    csv << ',' << csvCell(link + "_torque_nm") << ',' << csvCell(link + "_at_limit") << ','
+        << csvCell(link + "_error_deg");
   }
   csv << '\n';
   auto vec = [&](const glm::dvec3& v) { csv << ',' << v.x << ',' << v.y << ',' << v.z; };
@@ -203,7 +205,8 @@ std::string traceCsv(const physics::SimulationReport& r) {
       vec(step.target_foot_positions[f]);
     }
     for (size_t li = 1; li < step.torques_nm.size(); ++li)
-      csv << ',' << step.torques_nm[li] << ',' << static_cast<int>(step.at_limit[li]);
+      csv << ',' << step.torques_nm[li] << ',' << static_cast<int>(step.at_limit[li]) << ','
+          << step.errors_rad[li] * 180.0 / std::numbers::pi;
     csv << '\n';
   }
   return csv.str();

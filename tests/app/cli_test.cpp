@@ -459,9 +459,9 @@ TEST(CliTest, SimulateTracesEveryStepAsCsv) {
   };
   const std::vector<std::string> names = cells(header);
   EXPECT_EQ(names.front(), "time_s");
-  // 14 columns, eight per foot (2: contacts, pivot, force, the target's pivot), two per joint
-  // (12 joints below the pelvis).
-  EXPECT_EQ(names.size(), 14u + 8u * 2u + 2u * 12u) << header;
+  // 14 columns, eight per foot (2: contacts, pivot, force, the target's pivot), three per joint
+  // (12 joints below the pelvis: torque, at the limit, error).
+  EXPECT_EQ(names.size(), 14u + 8u * 2u + 3u * 12u) << header;
   int rows = 0;
   for (; std::getline(lines, line); ++rows) {
     const std::vector<std::string> row = cells(line);

@@ -672,6 +672,7 @@ TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
   const double dt = 1.0 / settings.world.step_hz;
   ASSERT_EQ(r.trace.size(), 120u);
   std::vector<double> down(r.feet.size(), 0.0), limited(biped.plan.links.size(), 0.0);
+  std::vector<double> squared(biped.plan.links.size(), 0.0);
   for (size_t k = 0; k < r.trace.size(); ++k) {
     const TraceStep& step = r.trace[k];
     EXPECT_NEAR(step.time_s, dt * static_cast<double>(k + 1), 1e-9);
@@ -689,6 +690,11 @@ TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
       EXPECT_GT(r.trace[k - 1].foot_contacts[static_cast<size_t>(step.stance_foot)], 0);
     }
     for (size_t li = 0; li < step.at_limit.size(); ++li) limited[li] += step.at_limit[li];
+    ASSERT_EQ(step.errors_rad.size(), biped.plan.links.size());
+    for (size_t li = 0; li < step.errors_rad.size(); ++li) {
+      EXPECT_TRUE(std::isfinite(step.errors_rad[li]) && step.errors_rad[li] >= 0.0);
+      squared[li] += step.errors_rad[li] * step.errors_rad[li];
+    }
     for (const glm::dvec3& v : {step.com, step.com_velocity, step.target_com, step.target_velocity})
       EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
     for (double t : step.torques_nm) EXPECT_TRUE(std::isfinite(t) && t >= 0.0);
@@ -697,6 +703,15 @@ TEST(Simulation, ATraceRecordsEveryStepAsTheReportCountsIt) {
     EXPECT_NEAR(down[f] / 120.0, r.contact_share[f], 1e-12) << r.feet[f];
   for (size_t li = 0; li < limited.size(); ++li)
     EXPECT_NEAR(limited[li] / 120.0, r.torque_limited_share[li], 1e-12) << r.links[li];
+  // The per-step angles are the ones the report's tracking error sums, and the joints turn off
+  // their targets (a walk pulled by gravity and the ground; the base has none).
+  double all = 0.0;
+  for (size_t li = 0; li < squared.size(); ++li) {
+    EXPECT_NEAR(std::sqrt(squared[li] / 120.0), r.track_err_by_link_rad[li], 1e-12) << r.links[li];
+    all += squared[li];
+  }
+  EXPECT_EQ(squared[0], 0.0);
+  EXPECT_GT(all, 0.0);
   // The body starts in the target's pose, so the two centres of mass start together; the walk
   // goes forward (+Z) at about 1.3 m/s, the target's velocity with it.
   EXPECT_LT(glm::length(r.trace[0].com - r.trace[0].target_com), 0.02);

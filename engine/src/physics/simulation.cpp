@@ -192,18 +192,19 @@ bool turns(const Link& link) {
   return link.type == JointType::kBall || link.type == JointType::kHinge;
 }
 
-// Adds each joint's squared angle to its target in `wanted` to `link_sums` (links).
+// Each joint's angle to its target in `wanted` this step (`angles`, links; 0 for the base and
+// fixed joints), its square added to `link_sums` (links).
 void addTrackingError(const BodyPlan& plan, const LinkPose& now, const LinkPose& wanted,
-                      std::vector<double>& link_sums) {
+                      std::vector<double>& angles, std::vector<double>& link_sums) {
+  angles.assign(plan.links.size(), 0.0);
   for (size_t li = 1; li < plan.links.size(); ++li) {
     const JointType type = plan.links[li].type;
     if (type == JointType::kBall)
-      link_sums[li] += std::pow(glm::length(shortRotationVector(glm::normalize(
-                                    glm::inverse(now.rotations[li]) * wanted.rotations[li]))),
-                                2.0);
+      angles[li] = glm::length(
+          shortRotationVector(glm::normalize(glm::inverse(now.rotations[li]) * wanted.rotations[li])));
     else if (type == JointType::kHinge)
-      link_sums[li] +=
-          std::pow(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi), 2.0);
+      angles[li] = std::abs(std::remainder(now.angles[li] - wanted.angles[li], 2.0 * std::numbers::pi));
+    link_sums[li] += angles[li] * angles[li];
   }
 }
 
@@ -252,7 +253,7 @@ void torqueLimitFlags(const World& world, std::span<const double> torques,
 TraceStep traceStep(const World& world, const TrackingController& controller,
                     const std::vector<glm::dmat4>& transforms, std::span<const double> torques,
                     const std::vector<int>& offsets, const std::vector<std::uint8_t>& at_limit,
-                    glm::dvec3& previous_target) {
+                    const std::vector<double>& errors, glm::dvec3& previous_target) {
   const BodyPlan& plan = world.plan();
   TraceStep row;
   row.time_s = world.time();
@@ -276,6 +277,7 @@ TraceStep traceStep(const World& world, const TrackingController& controller,
       row.torques_nm[li] = std::max(row.torques_nm[li],
                                     std::abs(torques[static_cast<size_t>(offsets[li] + d)]));
   row.at_limit = at_limit;
+  row.errors_rad = errors;
   return row;
 }
 
@@ -409,6 +411,7 @@ struct StepMeter {
   std::vector<double> torques, velocities;     // (dofs) the last step's
   std::vector<glm::dmat4> transforms;          // (links) after the last step
   std::vector<std::uint8_t> at_limit;          // (links)
+  std::vector<double> errors;                  // (links) the step's angles to the target, rad
   std::vector<int> footfall_gaps, off_ground;  // (feet) countFootfalls
   glm::dvec3 target_com{0.0};                  // the last step's (trace)
   glm::dvec3 start_velocity{0.0};              // the first step's target velocity (trace)
@@ -436,7 +439,7 @@ struct StepMeter {
     if (!trace) return;
     const bool first = report.trace.empty();
     report.trace.push_back(
-        traceStep(world, controller, transforms, torques, dof_offsets, at_limit, target_com));
+        traceStep(world, controller, transforms, torques, dof_offsets, at_limit, errors, target_com));
     if (first) report.trace.back().target_velocity = start_velocity;
   }
 };
@@ -520,7 +523,7 @@ Result<SimulationReport> simulate(const BodyPlan& plan, const motion::Skeleton& 
           linkPoseFromSkeleton(plan, skeleton, reference_pose, recorder.reference_translations);
       wanted = &reference_links;
     }
-    addTrackingError(plan, world.jointPositions(), *wanted, error_sums);
+    addTrackingError(plan, world.jointPositions(), *wanted, meter.errors, error_sums);
     ++error_steps;
     meter.measure(world, controller, settings.trace, report);
 

@@ -86,6 +86,8 @@ struct TraceStep {
   std::vector<double> torques_nm;           // (links; 0 for the base) largest |servo torque| of
                                             // the joint's axes
   std::vector<std::uint8_t> at_limit;       // (links) 1: at its torque limit on an axis
+  std::vector<double> errors_rad;           // (links; 0 for the base) the joint's angle to its
+                                            // target, the one track_err_rad_rms sums
 };
 
 struct SimulationReport {
