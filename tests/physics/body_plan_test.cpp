@@ -1,9 +1,11 @@
 #include "sinew/physics/body_plan.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -32,6 +34,9 @@ TEST(BodyPlan, RefusesInvalidInputs) {
   BodyPlanSettings s;
   s.min_segment_length_m = -1.0;
   refused(s, "min_segment_length_m");
+  s = {};
+  s.max_lost_displacement = -0.1;
+  refused(s, "max_lost_displacement");
   s = {};
   s.hinge_dominance = 1.5;
   refused(s, "hinge_dominance");
@@ -246,6 +251,82 @@ TEST(BodyPlan, CmuZeroLengthHipJointsMergeIntoThePelvis) {
     EXPECT_EQ(plan.link_of_joint[static_cast<size_t>(j)], 0) << name;
   }
   for (const Link& l : plan.links) EXPECT_EQ(l.name.find("Finger"), std::string::npos) << l.name;
+}
+
+// Hips, a Spine at the hips' own point (as the MANN dog's), a Chest 30 cm above it, a Head; two
+// legs with feet.
+motion::Skeleton spineOnTheHips() {
+  motion::Skeleton s;
+  s.addJoint("Hips", motion::kNoParent, {0.0, 1.0, 0.0});
+  const int spine = s.addJoint("Spine", 0, {0.0, 0.0, 0.0});
+  const int chest = s.addJoint("Chest", spine, {0.0, 0.3, 0.0});
+  const int head = s.addJoint("Head", chest, {0.0, 0.3, 0.0});
+  s.end_sites[static_cast<size_t>(head)] = glm::dvec3(0.0, 0.2, 0.0);
+  for (const double side : {1.0, -1.0}) {
+    const std::string name = side > 0.0 ? "Left" : "Right";
+    const int hip = s.addJoint(name + "UpLeg", 0, {0.1 * side, -0.05, 0.0});
+    const int knee = s.addJoint(name + "Leg", hip, {0.0, -0.45, 0.0});
+    const int foot = s.addJoint(name + "Foot", knee, {0.0, -0.42, 0.0});
+    s.end_sites[static_cast<size_t>(foot)] = glm::dvec3(0.0, -0.08, 0.15);
+  }
+  return s;
+}
+
+// The Spine turning +-15 degrees about `axis` over 60 frames, everything else at rest.
+motion::Clip spineTurning(const motion::Skeleton& s, const glm::dvec3& axis) {
+  motion::Clip clip = motion::restClip(s, 60, 1.0 / 30.0);
+  const int spine = s.findJoint("Spine");
+  for (int f = 0; f < clip.frame_count; ++f)
+    clip.rotations[static_cast<size_t>(f * clip.joint_count + spine)] =
+        glm::angleAxis(0.26 * std::sin(2.0 * std::numbers::pi * f / 60.0), axis);
+  return clip;
+}
+
+// The largest distance over the clip between the Chest's pivot in the body's pose and in the clip.
+double chestPivotError(const BodyPlan& plan, const motion::Skeleton& s, const motion::Clip& clip) {
+  const int chest = s.findJoint("Chest");
+  const int link = plan.link_of_joint[static_cast<size_t>(chest)];
+  EXPECT_EQ(plan.links[static_cast<size_t>(link)].joint, chest);
+  std::vector<glm::dmat4> world(static_cast<size_t>(s.jointCount()));
+  double worst = 0.0;
+  for (int f = 0; f < clip.frame_count; ++f) {
+    const auto first = static_cast<std::ptrdiff_t>(f * clip.joint_count);
+    const std::vector<glm::dquat> rotations(clip.rotations.begin() + first,
+                                            clip.rotations.begin() + first + clip.joint_count);
+    const std::vector<glm::dvec3> translations(clip.translations.begin() + first,
+                                               clip.translations.begin() + first + clip.joint_count);
+    const PoseKinematics body = poseKinematics(plan, linkPoseFromSkeleton(plan, s, rotations, translations));
+    motion::worldTransforms(s, clip, f, world);
+    worst = std::max(worst, glm::length(body.pivots[static_cast<size_t>(link)] -
+                                        glm::dvec3(world[static_cast<size_t>(chest)][3])));
+  }
+  return worst;
+}
+
+// A short joint whose turning carries its children keeps a link of its own. Merged into its
+// parent's link, its rotation would turn the children's links about their own pivots, and the
+// clip's sway of them would be lost (the MANN dog's forepaws rode 3-5 cm into the ground).
+TEST(BodyPlan, AShortJointThatCarriesItsChildrenKeepsALink) {
+  const motion::Skeleton s = spineOnTheHips();
+  const size_t spine = static_cast<size_t>(s.findJoint("Spine"));
+  // Pitched: the chest's pivot sways 0.3 m x 2 sin(7.5 deg) = 7.8 cm either side of its mean.
+  const motion::Clip pitched = spineTurning(s, {1.0, 0.0, 0.0});
+  const BodyPlan plan = buildBodyPlan(s, &pitched).value();
+  EXPECT_NE(plan.link_of_joint[spine], 0);
+  EXPECT_LT(chestPivotError(plan, s, pitched), 1e-9);
+  // Merged anyway (the rule off), the body's chest misses the clip's by up to the sway.
+  BodyPlanSettings merge;
+  merge.max_lost_displacement = 1e9;
+  const BodyPlan merged = buildBodyPlan(s, &pitched, merge).value();
+  EXPECT_EQ(merged.link_of_joint[spine], 0);
+  EXPECT_GT(chestPivotError(merged, s, pitched), 0.07);
+  // Twisted about the chest's own direction, the Spine moves nothing: it merges as before.
+  const motion::Clip twisted = spineTurning(s, {0.0, 1.0, 0.0});
+  const BodyPlan twist = buildBodyPlan(s, &twisted).value();
+  EXPECT_EQ(twist.link_of_joint[spine], 0);
+  EXPECT_LT(chestPivotError(twist, s, twisted), 1e-9);
+  // Without a clip nothing is known to move: it merges.
+  EXPECT_EQ(buildBodyPlan(s, nullptr).value().link_of_joint[spine], 0);
 }
 
 // The user's overrides win over the rules, and a name that is not a link is refused, named.

@@ -99,6 +99,10 @@ struct BodyPlanSettings {
                                   // parent link's pivot than that link's diameter merge into it:
                                   // short spine segments make light links that explicit PD cannot
                                   // hold stiffly (a 12 cm spine link of 2.7 kg diverges at 240 Hz)
+  double max_lost_displacement = 0.02;  // a short joint whose turning in the clip moves its
+                                        // children's pivots this far (a share of the rig size)
+                                        // or more keeps a link of its own: merged, that motion
+                                        // would be lost, >= 0
   std::vector<std::string> keep_names;  // name parts of joints never merged (overrides the above)
   std::vector<std::string> hinge_names{"knee", "elbow"};  // besides shank and forearm segments
   double hinge_dominance = 0.85;    // a hinge candidate is a hinge when its observed rotation
