@@ -637,34 +637,27 @@ struct FirstPose {
   int base = 0;                                   // the base link's joint
 };
 
-// Merging, parents first: whole subtrees by name (fingers, hands), single joints by length.
 // How far joint j's turning in the clip moves the pivots of its children, metres: the largest
 // distance over the frames of a child's pivot, turned by j's rotation, from where j's mean
 // rotation puts it (a twist about the child's own direction moves it nowhere). A joint merged
 // into its parent's link turns its children's links about their own pivots, not about its own,
 // so this much of the motion is lost (the MANN dog's Spine, at the hips with Spine1 19 cm ahead:
 // merged, the chest and both forelegs rode 3-5 cm too low in the target, into the ground).
-// 0 without a clip or children.
-double childDisplacement(const FirstPose& pose, const motion::Clip* clip, int j) {
+// `mean`: meanPose of the clip. 0 without a clip or children.
+double childDisplacement(const FirstPose& pose, const motion::Clip* clip,
+                         std::span<const glm::dquat> mean, int j) {
   if (clip == nullptr || pose.children[j].empty()) return 0.0;
-  glm::dquat mean(0.0, 0.0, 0.0, 0.0);
-  for (int f = 0; f < clip->frame_count; ++f) {
-    const glm::dquat q = clip->rotation(f, j);
-    const double sign = glm::dot(q, clip->rotation(0, j)) < 0.0 ? -1.0 : 1.0;
-    mean = glm::dquat(mean.w + sign * q.w, mean.x + sign * q.x, mean.y + sign * q.y, mean.z + sign * q.z);
-  }
-  if (glm::length(mean) < 1e-12) return 0.0;
-  mean = glm::normalize(mean);
   double farthest = 0.0;
   for (int c : pose.children[j]) {
     const glm::dvec3 offset = pose.skeleton.offsets[c];
-    const glm::dvec3 at_mean = mean * offset;
+    const glm::dvec3 at_mean = mean[static_cast<size_t>(j)] * offset;
     for (int f = 0; f < clip->frame_count; ++f)
       farthest = std::max(farthest, glm::length(clip->rotation(f, j) * offset - at_mean));
   }
   return farthest;
 }
 
+// Merging, parents first: whole subtrees by name (fingers, hands), single joints by length.
 // (joints) 1 where the joint merges into its parent's link.
 std::vector<char> mergedJoints(const FirstPose& pose, const motion::Clip* clip,
                                const BodyPlanSettings& settings, double size_m) {
@@ -673,6 +666,7 @@ std::vector<char> mergedJoints(const FirstPose& pose, const motion::Clip* clip,
   const int base = pose.base;
   const double min_length = settings.min_segment_length_m * (size_m / settings.reference_size_m);
   std::vector<char> merged(n, 0), subtree_merged(n, 0);
+  const std::vector<glm::dquat> mean = clip != nullptr ? meanPose(*clip) : std::vector<glm::dquat>();
   for (int j = base + 1; j < n; ++j) {
     const int p = skeleton.parents[j];
     if (p < base) continue;  // cannot happen for a single-child base chain
@@ -686,7 +680,7 @@ std::vector<char> mergedJoints(const FirstPose& pose, const motion::Clip* clip,
     }
     if (subtree_merged[p]) subtree_merged[j] = 1;
     // Short, but its turning carries its children too far to be lost: a link of its own.
-    const double carried = m ? 0.0 : childDisplacement(pose, clip, j);
+    const double carried = m ? 0.0 : childDisplacement(pose, clip, mean, j);
     const bool carries = carried > 0.0 && carried >= settings.max_lost_displacement * size_m;
     if (!m && !carries && glm::length(skeleton.offsets[j]) < min_length) m = true;
     if (!m && pose.children[j].empty()) {
