@@ -679,15 +679,18 @@ std::vector<char> mergedJoints(const FirstPose& pose, const motion::Clip* clip,
       m = true;
     }
     if (subtree_merged[p]) subtree_merged[j] = 1;
-    // Short, but its turning carries its children too far to be lost: a link of its own.
-    const double carried = m ? 0.0 : childDisplacement(pose, clip, mean, j);
-    const bool carries = carried > 0.0 && carried >= settings.max_lost_displacement * size_m;
-    if (!m && !carries && glm::length(skeleton.offsets[j]) < min_length) m = true;
+    // Short, but its turning carries its children too far to be lost: a link of its own (asked
+    // only of a joint a length rule would merge).
+    const auto carries = [&] {
+      const double carried = childDisplacement(pose, clip, mean, j);
+      return carried > 0.0 && carried >= settings.max_lost_displacement * size_m;
+    };
+    if (!m && glm::length(skeleton.offsets[j]) < min_length && !carries()) m = true;
     if (!m && pose.children[j].empty()) {
       const double leaf = skeleton.end_sites[j] ? glm::length(*skeleton.end_sites[j]) : 0.0;
       if (leaf < min_length) m = true;
     }
-    if (!m && !carries && settings.merge_short_trunk &&
+    if (!m && settings.merge_short_trunk &&
         (pose.masses.segments[j] == motion::Segment::kTrunk ||
          pose.masses.segments[j] == motion::Segment::kHead)) {
       // Distance from the pivot of the link the parent belongs to, at the first pose.
@@ -696,7 +699,7 @@ std::vector<char> mergedJoints(const FirstPose& pose, const motion::Clip* clip,
       const double distance =
           glm::length(glm::dvec3(pose.world[j][3]) - glm::dvec3(pose.world[owner][3]));
       const double diameter = 2.0 * segmentRadius(settings, pose.masses.segments[owner]) * size_m;
-      if (distance < diameter) m = true;
+      if (distance < diameter && !carries()) m = true;
     }
     merged[j] = m ? 1 : 0;
   }
