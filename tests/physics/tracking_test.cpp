@@ -88,19 +88,31 @@ std::vector<glm::dvec3> linkOrigins(const BodyPlan& plan, const LinkPose& pose) 
 }
 
 // A world of c's first pose (raised by `lift` metres) moving 1 m/s faster than the target along
-// its travel; `travel` receives that direction. Null (a test failure) if refused.
-std::unique_ptr<World> worldAheadOfTarget(const test_util::Character& c, MotionState& state,
-                                          glm::dvec3& travel, double lift = 0.0) {
-  state = targetState(c.plan, c.asset.skeleton, c.target, 0.0);
-  state.pose.base_position.y += lift;
-  std::unique_ptr<World> world = World::create(c.plan, state.pose).value();
-  travel = travelOf(state);
-  if (!world->setVelocities(state.base_linear + travel, state.base_angular,
-                            state.joint_velocities).ok()) {
+// its travel, and a oneTermController on it whose `gains` set the term under test.
+struct AheadOfTarget {
+  MotionState state;
+  glm::dvec3 travel{0.0};  // the target's direction of travel (travelOf)
+  std::unique_ptr<World> world;
+  std::unique_ptr<TrackingController> controller;
+  std::vector<double> zero;  // (dofs) no extra torques for World::step
+};
+// Either pointer is null (and a test failure added) if refused.
+AheadOfTarget aheadOfTarget(const test_util::Character& c,
+                            const std::function<void(BalanceGains&)>& gains, double lift = 0.0) {
+  AheadOfTarget a;
+  a.state = targetState(c.plan, c.asset.skeleton, c.target, 0.0);
+  a.state.pose.base_position.y += lift;
+  a.world = World::create(c.plan, a.state.pose).value();
+  a.travel = travelOf(a.state);
+  if (!a.world->setVelocities(a.state.base_linear + a.travel, a.state.base_angular,
+                              a.state.joint_velocities).ok()) {
     ADD_FAILURE() << "setVelocities refused";
-    return nullptr;
+    a.world.reset();
+    return a;
   }
-  return world;
+  a.controller = oneTermController(*a.world, c, a.state.pose, gains);
+  a.zero.assign(static_cast<size_t>(a.world->dofCount()), 0.0);
+  return a;
 }
 
 // A swing leg's placement: the leg (hip to foot) in the servos' target, on the base as it is, and
@@ -207,16 +219,13 @@ TEST(TrackingController, SwingLiftRaisesTheSwingFootStraightUp) {
 TEST(TrackingController, StanceGainsMoveThePlantedFootAgainstTheVelocityError) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  MotionState state;
-  glm::dvec3 travel;
-  std::unique_ptr<World> world = worldAheadOfTarget(biped, state, travel);
-  ASSERT_TRUE(world);
-  std::unique_ptr<TrackingController> made = oneTermController(
-      *world, biped, state.pose, [](BalanceGains& g) { g.stance_sagittal = 0.05; });
-  ASSERT_TRUE(made);
-  TrackingController& controller = *made;
+  AheadOfTarget run = aheadOfTarget(biped, [](BalanceGains& g) { g.stance_sagittal = 0.05; });
+  ASSERT_TRUE(run.world && run.controller);
+  World* world = run.world.get();
+  TrackingController& controller = *run.controller;
+  const glm::dvec3 travel = run.travel;
+  const std::vector<double>& zero = run.zero;
   const std::vector<int> feet = footLinks(biped.plan);
-  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
   glm::dvec3 previous_com(0.0);
   int checked = 0;
   for (int k = 0; k < 40 && checked == 0; ++k) {
@@ -839,17 +848,14 @@ TEST(TrackingController, AHoppersOneLegBalancesAlone) {
 TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
   const test_util::Character hopper = test_util::loadCharacter("hopper_hop.bvh");
   ASSERT_FALSE(hopper.plan.links.empty());
-  MotionState state;
-  glm::dvec3 travel;
-  std::unique_ptr<World> world = worldAheadOfTarget(hopper, state, travel, 0.4);
-  ASSERT_TRUE(world);
-  std::unique_ptr<TrackingController> made = oneTermController(
-      *world, hopper, state.pose, [](BalanceGains& g) { g.cv_sagittal = 0.2; });
-  ASSERT_TRUE(made);
-  TrackingController& controller = *made;
+  AheadOfTarget run = aheadOfTarget(hopper, [](BalanceGains& g) { g.cv_sagittal = 0.2; }, 0.4);
+  ASSERT_TRUE(run.world && run.controller);
+  World* world = run.world.get();
+  TrackingController& controller = *run.controller;
+  const glm::dvec3 travel = run.travel;
+  const std::vector<double>& zero = run.zero;
   const int hip = controller.legPairs()[0].hips[0];
   const int foot = controller.feet()[0];
-  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
   glm::dvec3 previous_com(0.0);
   int checked = 0;
   for (int k = 0; k < 6; ++k) {
@@ -884,16 +890,13 @@ TEST(TrackingController, ALegAloneIsPlacedAgainstTheVelocityErrorInTheAir) {
 TEST(TrackingController, APairInTheAirGoesOnPlacingTheSwingFoot) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  MotionState state;
-  glm::dvec3 travel;
-  std::unique_ptr<World> world = worldAheadOfTarget(biped, state, travel);
-  ASSERT_TRUE(world);
-  std::unique_ptr<TrackingController> made = oneTermController(
-      *world, biped, state.pose, [](BalanceGains& g) { g.cv_sagittal = 0.2; });
-  ASSERT_TRUE(made);
-  TrackingController& controller = *made;
+  AheadOfTarget run = aheadOfTarget(biped, [](BalanceGains& g) { g.cv_sagittal = 0.2; });
+  ASSERT_TRUE(run.world && run.controller);
+  World* world = run.world.get();
+  TrackingController& controller = *run.controller;
+  const glm::dvec3 travel = run.travel;
+  const std::vector<double>& zero = run.zero;
   const LegPair pair = controller.legPairs()[0];
-  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
   int last_down = -1;  // the pair's side (0, 1) last down
   for (int k = 0; k < 40 && last_down < 0; ++k) {
     controller.update(*world);
