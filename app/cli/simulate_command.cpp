@@ -268,7 +268,7 @@ int runSimulate(const SimulateArgs& args) {
       std::fprintf(stderr, "sinew: warning: %s\n", warning.c_str());
     target = controller.value().target;
     what = args.controller_path;
-    settings.tracking.balance = controller.value().balance;
+    search::applyController(controller.value(), settings.tracking);
   }
   if (!args.balance.empty()) {
     if (Status status = applyBalanceFlag(args.balance, settings.tracking.balance); !status.ok())

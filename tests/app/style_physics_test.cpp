@@ -235,7 +235,7 @@ TEST_F(EvolveStyle, TheEnginesLoopOfTheBestRunInPlaceAndItsLimits) {
   ASSERT_TRUE(plan.ok()) << plan.message();
   physics::SimulationSettings settings;
   settings.seconds = controller.value().window_s;
-  settings.tracking.balance = controller.value().balance;
+  search::applyController(controller.value(), settings.tracking);
   Result<physics::SimulationReport> run =
       physics::simulate(plan.value(), asset.skeleton, controller.value().target, settings);
   ASSERT_TRUE(run.ok()) << run.message();

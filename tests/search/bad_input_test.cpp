@@ -115,6 +115,29 @@ TEST(SearchBadInput, LaterBalanceGainsRoundTripAndAreOffInOlderFiles) {
                                  ": balance: stance_yield: expected a share from 0 to 0.9");
 }
 
+// The servo lead the search ran with: saved and read back and given to a replay; a file from
+// before it replays without one (as it was searched); a lead beyond a second is refused.
+TEST(SearchBadInput, TheServoLeadRoundTripsAndIsNoneInOlderFiles) {
+  const physics::test_util::Character c = biped();
+  test::TempDir dir;
+  Result<ControllerFile> led = editedController(
+      c, [](nlohmann::json& j) { j["settings"]["servo_lead_s"] = 0.02; }, dir);
+  ASSERT_TRUE(led.ok()) << led.message();
+  EXPECT_EQ(led.value().servo_lead_s, 0.02);
+  physics::TrackingSettings tracking;
+  applyController(led.value(), tracking);
+  EXPECT_EQ(tracking.servo_lead_s, 0.02);
+  Result<ControllerFile> older = editedController(
+      c, [](nlohmann::json& j) { j["settings"].erase("servo_lead_s"); }, dir);
+  ASSERT_TRUE(older.ok()) << older.message();
+  EXPECT_TRUE(older.value().warnings.empty());
+  EXPECT_EQ(older.value().servo_lead_s, 0.0);
+  Result<ControllerFile> far = editedController(
+      c, [](nlohmann::json& j) { j["settings"]["servo_lead_s"] = 2.0; }, dir);
+  EXPECT_EQ(far.message(), (dir / "edited.json").string() +
+                               ": settings: servo_lead_s: expected seconds in [0, 1]");
+}
+
 // Paths are bytes: a Latin-1 rig or clip path comes back as the same bytes (core's path_json, the
 // project's and the checkpoint's code); a wrong encoding is refused naming the field.
 TEST(SearchBadInput, ControllerPathsRoundTripAsBytes) {

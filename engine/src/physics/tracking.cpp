@@ -342,6 +342,8 @@ Status TrackingSettings::validate() const {
   if (!positive(limb_torque_scale)) return Status::error("limb_torque_scale must be > 0");
   if (!positive(gravity_m_s2)) return Status::error("gravity_m_s2 must be > 0");
   if (!(std::isfinite(ramp_s) && ramp_s >= 0.0)) return Status::error("ramp_s must be >= 0");
+  if (!(std::isfinite(servo_lead_s) && servo_lead_s >= 0.0 && servo_lead_s <= 1.0))
+    return Status::error("servo_lead_s must be seconds in [0, 1]");
   BalanceGains b = balance;
   for (int i = 0; i < kBalanceGainCount; ++i) {
     const double g = balanceGain(b, i);
@@ -352,6 +354,8 @@ Status TrackingSettings::validate() const {
   }
   return Status();
 }
+
+double servoLag(double step_hz, double rate) { return 1.0 / (step_hz * rate); }
 
 std::vector<double> jointTorqueLimits(const BodyPlan& plan, double support_scale,
                                       double limb_scale, double gravity_m_s2) {
@@ -516,25 +520,35 @@ void TrackingController::liftSwingFeet(double time) {
   }
 }
 
-void TrackingController::update(World& world) {
+LinkPose TrackingController::motionAt(double time) {
   const BodyPlan& plan = *plan_;
-  const double t = world.time();
   // The whole pose, the root's travel included: the reference centre of mass moves with the
   // motion, so its velocity is the motion's, not only what the joints' turning gives.
-  fourier_->evaluate(t, rotations_, translations_);
-  motion_ = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
+  fourier_->evaluate(time, rotations_, translations_);
+  LinkPose pose = linkPoseFromSkeleton(plan, *skeleton_, rotations_, translations_);
   // Ramp from the standing pose into the motion.
-  const double ramp = settings_.ramp_s > 0.0 ? std::clamp(t / settings_.ramp_s, 0.0, 1.0) : 1.0;
+  const double ramp =
+      settings_.ramp_s > 0.0 ? std::clamp(time / settings_.ramp_s, 0.0, 1.0) : 1.0;
   if (ramp < 1.0) {
     const double w = ramp * ramp * (3.0 - 2.0 * ramp);  // smoothstep
     for (size_t li = 1; li < plan.links.size(); ++li) {
-      motion_.rotations[li] = glm::slerp(standing_.rotations[li], motion_.rotations[li], w);
-      motion_.angles[li] = standing_.angles[li] + w * (motion_.angles[li] - standing_.angles[li]);
+      pose.rotations[li] = glm::slerp(standing_.rotations[li], pose.rotations[li], w);
+      pose.angles[li] = standing_.angles[li] + w * (pose.angles[li] - standing_.angles[li]);
     }
-    motion_.base_rotation = glm::slerp(standing_.base_rotation, motion_.base_rotation, w);
+    pose.base_rotation = glm::slerp(standing_.base_rotation, pose.base_rotation, w);
   }
-  target_ = motion_;
-  if (settings_.balance.swing_lift > 0.0) liftSwingFeet(t);
+  return pose;
+}
+
+void TrackingController::update(World& world) {
+  const double t = world.time();
+  const double lead = settings_.servo_lead_s;
+  // The servos' pose ahead by the lead, then the present one (last: translations_ stay the
+  // present's), which the feedback and the tracking error are measured against.
+  if (lead > 0.0) target_ = motionAt(t + lead);
+  motion_ = motionAt(t);
+  if (lead <= 0.0) target_ = motion_;
+  if (settings_.balance.swing_lift > 0.0) liftSwingFeet(t + lead);
   stance_ = -1;
   if (settings_.feedback && balance_) {
     // The target's own centre of mass and ankles (forward kinematics of the motion's pose).

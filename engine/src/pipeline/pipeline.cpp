@@ -178,6 +178,8 @@ physics::SimulationSettings simulationSettings(const PhysicsSettings& physics) {
   simulation.seconds = physics.window_s;
   simulation.world.terrain = physics.terrain;
   simulation.pushes = physics.pushes;
+  simulation.tracking.servo_lead_s =
+      physics::servoLag(simulation.world.step_hz, simulation.tracking.servo_rate);
   return simulation;
 }
 

@@ -25,6 +25,11 @@ nlohmann::json balanceJson(physics::BalanceGains gains) {
 
 }  // namespace
 
+void applyController(const ControllerFile& controller, physics::TrackingSettings& tracking) {
+  tracking.balance = controller.balance;
+  tracking.servo_lead_s = controller.servo_lead_s;
+}
+
 Status saveController(const std::filesystem::path& path, const ControllerFile& c,
                       const motion::Skeleton& skeleton) {
   nlohmann::json json = {
@@ -37,7 +42,8 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
         {"terrain", c.terrain},
         {"seed", c.seed},
         {"optimizer", c.optimizer},
-        {"no_prior", c.no_prior}}},
+        {"no_prior", c.no_prior},
+        {"servo_lead_s", c.servo_lead_s}}},
       {"fitness", fitnessJson(c.fitness)}};
   writePathJson(json, "rig", c.rig);
   writePathJson(json, "clip", c.clip);
@@ -80,14 +86,22 @@ Status readSettings(const nlohmann::json& json, const std::string& name, Control
   if (!found.ok()) return found.status();
   const nlohmann::json& s = *found.value();
   const std::string where = name + ": settings";
-  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior"}, where, &c.warnings);
+  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior", "servo_lead_s"}, where,
+              &c.warnings);
   if (Status st = readNumber(s, "window_s", where, c.window_s); !st.ok()) return st;
   if (!(c.window_s > 0.0 && c.window_s <= 3600.0))
     return Status::error(where + ": window_s: expected seconds in (0, 3600]");
   if (Status st = readString(s, "terrain", where, c.terrain); !st.ok()) return st;
   if (Status st = readUint64(s, "seed", where, c.seed); !st.ok()) return st;
   if (Status st = readString(s, "optimizer", where, c.optimizer); !st.ok()) return st;
-  return readBool(s, "no_prior", where, c.no_prior);
+  if (Status st = readBool(s, "no_prior", where, c.no_prior); !st.ok()) return st;
+  // Searched before the servos led their targets: replayed without a lead, as it was searched.
+  c.servo_lead_s = 0.0;
+  if (!s.contains("servo_lead_s")) return {};
+  if (Status st = readNumber(s, "servo_lead_s", where, c.servo_lead_s); !st.ok()) return st;
+  if (!(c.servo_lead_s >= 0.0 && c.servo_lead_s <= 1.0))
+    return Status::error(where + ": servo_lead_s: expected seconds in [0, 1]");
+  return {};
 }
 
 }  // namespace
@@ -148,6 +162,7 @@ Status exportBest(const Problem& problem, std::span<const double> point,
   meta.target = problem.layout.decodeTarget(point);
   meta.balance = problem.layout.decodeGains(point);
   meta.window_s = problem.simulation.seconds;
+  meta.servo_lead_s = problem.simulation.tracking.servo_lead_s;
   meta.fitness = fitness;
   if (Status s = saveController(dir / "best.json", meta, rig.skeleton); !s.ok()) return s;
   const Evaluation replay = evaluate(problem, point, nullptr, true);

@@ -145,6 +145,7 @@ std::uint64_t fingerprint(const Problem& problem) {
   for (int i = 0; i < physics::kBalanceGainCount; ++i) mix(h, physics::balanceGain(gains, i));
   for (const physics::Link& link : problem.plan.links) mix(h, link.mass_kg);
   mix(h, problem.simulation.seconds);
+  mix(h, problem.simulation.tracking.servo_lead_s);
   FitnessWeights weights = problem.weights;
   for (int k = 0; k < kFitnessTermCount; ++k) mix(h, fitnessWeight(weights, k));
   for (const auto* pushes : {&problem.simulation.pushes, &problem.trial_pushes}) {

@@ -143,10 +143,20 @@ struct TrackingSettings {
   double ramp_s = 1.0;                 // the targets blend from the standing pose into the motion
                                        // over this time, seconds, >= 0
   bool feedback = true;                // balance feedback (for legs in pairs: legPairs())
+  // The servos are given the motion this far ahead of the present, seconds in [0, 1]: a servo
+  // that closes `servo_rate` of its error a step trails a moving target by servoLag(), and
+  // leading it by as much takes that lag out. The feedback's references and the tracking error
+  // stay at the present time. 0 here (and in a best.json that predates it); the search's
+  // problems lead by servoLag() (pipeline::simulationSettings).
+  double servo_lead_s = 0.0;
   BalanceGains balance;
 
   Status validate() const;  // the message names the offending field
 };
+
+// How far a servo closing `rate` of its error each step of a world stepping at `step_hz` trails a
+// target moving at a steady speed, seconds: 1 / (step_hz x rate) (20.8 ms at 240 Hz and 0.2).
+double servoLag(double step_hz, double rate);
 
 // Joint torque limits (links, N m; 0 for the base): support_scale x body weight x size for
 // joints whose subtree holds a foot, limb_scale x subtree weight x size for the others.
@@ -203,6 +213,7 @@ class TrackingController {
 
  private:
   TrackingController() = default;
+  LinkPose motionAt(double time);  // the target's pose at `time`, ramped; fills the scratch
   void liftSwingFeet(double time);
   void applyFeedback(const World& world);
   // Pair p's feedback; returns its stance foot (index into feet_), -1 with no foot down.

@@ -3,7 +3,7 @@
 //   MotionAsset + Clip --resolveJointK, analyze, targetFromSpectrum--> model (or a target file)
 //     --applyMotionEdits (band gains, styles, secondary)-----------> the target the search tracks
 //     --buildBodyPlan (body overrides)-----------------------------> BodyPlan
-//     --simulationSettings (window, terrain, pushes)---------------> SimulationSettings
+//     --simulationSettings (window, terrain, pushes, servo lead)---> SimulationSettings
 //     --search::Problem::create (genome, weights)------------------> Problem
 //   SearchSettings --evolveSettings-------------------------------> search::EvolveSettings
 //
@@ -80,7 +80,8 @@ const char* trackedName(const ProjectSettings& settings);
 // The body plan of `clip` with the overrides (the message names the rig).
 Result<physics::BodyPlan> bodyPlan(const motion::Skeleton& skeleton, const motion::Clip& clip,
                                    const BodyOverrides& body, const std::string& rig);
-// A simulation of the window on the terrain, with the pushes.
+// A simulation of the window on the terrain, with the pushes; the servos lead their targets by
+// their lag (physics::servoLag).
 physics::SimulationSettings simulationSettings(const PhysicsSettings& physics);
 // The session's settings from a project's (budget: its minutes; no generation limit).
 search::EvolveSettings evolveSettings(const SearchSettings& search);

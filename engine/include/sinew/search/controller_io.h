@@ -31,11 +31,15 @@ struct ControllerFile {
   std::uint64_t seed = 1;
   std::string optimizer;
   bool no_prior = false;
+  double servo_lead_s = 0.0;  // physics::TrackingSettings::servo_lead_s the search ran with
   FitnessTerms fitness;
   std::string rig;
   std::string clip;
   std::vector<std::string> warnings;  // read, not written: unknown keys, with the file and field
 };
+// What a replay of the controller takes from it besides the target: its balance gains and the
+// servo lead it was searched with.
+void applyController(const ControllerFile& controller, physics::TrackingSettings& tracking);
 // Saved atomically (a failed save keeps the old file); loading names the file and the field.
 Status saveController(const std::filesystem::path& path, const ControllerFile& controller,
                       const motion::Skeleton& skeleton);
