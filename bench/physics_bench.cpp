@@ -38,6 +38,9 @@ physics::SimulationSettings runSettings() {
   physics::SimulationSettings settings;
   settings.seconds = kSeconds;
   settings.stop_at_fall = false;
+  // As a search runs it (pipeline::simulationSettings): the servos lead by their lag.
+  settings.tracking.servo_lead_s =
+      physics::servoLag(settings.world.step_hz, settings.tracking.servo_rate);
   return settings;
 }
 
@@ -94,7 +97,8 @@ void bareBullet(benchmark::State& state) {
 // Ours: physics::simulate for the same second (world built, controller, feedback, recording).
 void simulateRun(benchmark::State& state) {
   const Data& d = data();
-  const physics::SimulationSettings settings = runSettings();
+  physics::SimulationSettings settings = runSettings();
+  if (state.range(0) == 0) settings.tracking.servo_lead_s = 0.0;
   long long steps = 0;
   for (auto _ : state) {
     auto report = physics::simulate(d.plan, d.asset.skeleton, d.target, settings);
@@ -123,8 +127,14 @@ int main(int argc, char** argv) {
               d.plan.links.size(), d.plan.dofCount(), kSeconds);
 
   benchmark::RegisterBenchmark("baseline_bare_bullet", bareBullet)->Unit(benchmark::kMillisecond)->UseRealTime();
-  benchmark::RegisterBenchmark("simulate", simulateRun)->Unit(benchmark::kMillisecond)->UseRealTime();
+  benchmark::RegisterBenchmark("simulate", simulateRun)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+  // The servos given the present pose (one evaluation of the target a step, not two).
+  benchmark::RegisterBenchmark("simulate_without_lead", simulateRun)
+      ->Arg(0)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   benchmark::RegisterBenchmark("simulate_threads", simulateRun)
+      ->Arg(1)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->Threads(1)
@@ -135,15 +145,19 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
   const double bare = reporter.times["baseline_bare_bullet/real_time"];
-  const double ours = reporter.times["simulate/real_time"];
-  const double one = reporter.times["simulate_threads/real_time/threads:1"];
-  const double two = reporter.times["simulate_threads/real_time/threads:2"];
+  const double ours = reporter.times["simulate/1/real_time"];
+  const double unled = reporter.times["simulate_without_lead/0/real_time"];
+  const double one = reporter.times["simulate_threads/1/real_time/threads:1"];
+  const double two = reporter.times["simulate_threads/1/real_time/threads:2"];
   const double steps = kSeconds * 240.0;
   if (bare > 0.0 && ours > 0.0) {
     std::printf("\nsteps per second per core: bare Bullet %.0f, simulate %.0f; our overhead %.1f%% "
                 "(aim: at most 15%%)\n",
                 steps / (bare * 1e-3), steps / (ours * 1e-3), 100.0 * (ours / bare - 1.0));
   }
+  if (ours > 0.0 && unled > 0.0)
+    std::printf("the servo lead (a second target evaluation a step) costs %.1f%%\n",
+                100.0 * (ours / unled - 1.0));
   if (one > 0.0 && two > 0.0) {
     // With N threads each iteration is one run per thread; the reported time is per iteration.
     std::printf("times real time: %.1fx on 1 thread, %.1fx on 2 threads (%.2fx speed-up)\n",
