@@ -116,6 +116,36 @@ AheadOfTarget aheadOfTarget(const test_util::Character& c,
   return a;
 }
 
+// A world at the target's first pose (at rest) with a controller of `settings` on it; nulls (a
+// test failure) if refused.
+struct AtTarget {
+  std::unique_ptr<World> world;
+  std::unique_ptr<TrackingController> controller;
+  std::vector<double> zero;  // (dofs) no torques of the test's own
+};
+AtTarget startAtTarget(const test_util::Character& c, const TrackingSettings& settings) {
+  AtTarget a;
+  const MotionState state = targetState(c.plan, c.asset.skeleton, c.target, 0.0);
+  a.world = World::create(c.plan, state.pose).value();
+  auto made = TrackingController::create(*a.world, c.asset.skeleton, c.target, state.pose, settings);
+  if (!made.ok()) {
+    ADD_FAILURE() << made.message();
+    return a;
+  }
+  a.controller = std::move(made.value());
+  a.zero.assign(static_cast<size_t>(a.world->dofCount()), 0.0);
+  return a;
+}
+
+// The target's pose at time t, in link coordinates.
+LinkPose targetPoseAt(const test_util::Character& c, double t) {
+  const size_t joints = static_cast<size_t>(c.asset.skeleton.jointCount());
+  std::vector<glm::dquat> rotations(joints);
+  std::vector<glm::dvec3> translations(joints);
+  c.target.pose(t, rotations, translations);
+  return linkPoseFromSkeleton(c.plan, c.asset.skeleton, rotations, translations);
+}
+
 // A swing leg's placement: the leg (hip to foot) in the servos' target, on the base as it is, and
 // in the motion's, on the motion's base, and the angle between them, rad.
 struct LegTurn {
@@ -355,28 +385,20 @@ TEST(TrackingController, StanceYieldSlowsThePlantedLegsServosOnly) {
 TEST(TrackingController, TheMotionTargetTravelsWithTheTarget) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
-  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
   TrackingSettings settings;
   settings.ramp_s = 0.0;
-  auto made = TrackingController::create(*world, biped.asset.skeleton, biped.target, state.pose,
-                                         settings);
-  ASSERT_TRUE(made.ok()) << made.message();
-  TrackingController& controller = *made.value();
-  std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
-  const size_t joints = static_cast<size_t>(biped.asset.skeleton.jointCount());
-  std::vector<glm::dquat> rotations(joints);
-  std::vector<glm::dvec3> translations(joints);
+  AtTarget run = startAtTarget(biped, settings);
+  ASSERT_TRUE(run.controller);
+  World* world = run.world.get();
+  TrackingController& controller = *run.controller;
   glm::dvec3 first(0.0);
   while (world->time() < 1.0) {
     controller.update(*world);
-    biped.target.pose(world->time(), rotations, translations);
-    const LinkPose expected =
-        linkPoseFromSkeleton(biped.plan, biped.asset.skeleton, rotations, translations);
+    const LinkPose expected = targetPoseAt(biped, world->time());
     ASSERT_LT(glm::length(controller.motionTarget().base_position - expected.base_position), 1e-9)
         << "at " << world->time() << " s";
     if (world->stepCount() == 0) first = expected.base_position;
-    world->step(zero);
+    world->step(run.zero);
   }
   const glm::dvec3 moved = controller.motionTarget().base_position - first;
   const double speed = glm::length(glm::dvec2(moved.x, moved.z)) / world->time();
@@ -389,31 +411,21 @@ TEST(TrackingController, TheMotionTargetTravelsWithTheTarget) {
 TEST(TrackingController, ALeadGivesTheServosThePoseAheadAndKeepsTheMotionTargetNow) {
   const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
   ASSERT_FALSE(biped.plan.links.empty());
-  const MotionState state = targetState(biped.plan, biped.asset.skeleton, biped.target, 0.0);
-  std::unique_ptr<World> world = World::create(biped.plan, state.pose).value();
   TrackingSettings settings;
   settings.ramp_s = 0.0;
   settings.feedback = false;
   settings.balance.swing_lift = 0.0;  // the targets as the motion has them
   settings.servo_lead_s = servoLag(240.0, settings.servo_rate);
   EXPECT_NEAR(settings.servo_lead_s, 1.0 / 48.0, 1e-12);
-  auto made = TrackingController::create(*world, biped.asset.skeleton, biped.target, state.pose,
-                                         settings);
-  ASSERT_TRUE(made.ok()) << made.message();
-  TrackingController& controller = *made.value();
-  const std::vector<double> zero(static_cast<size_t>(world->dofCount()), 0.0);
-  const size_t joints = static_cast<size_t>(biped.asset.skeleton.jointCount());
-  std::vector<glm::dquat> rotations(joints);
-  std::vector<glm::dvec3> translations(joints);
-  auto poseAt = [&](double t) {
-    biped.target.pose(t, rotations, translations);
-    return linkPoseFromSkeleton(biped.plan, biped.asset.skeleton, rotations, translations);
-  };
+  AtTarget run = startAtTarget(biped, settings);
+  ASSERT_TRUE(run.controller);
+  World* world = run.world.get();
+  TrackingController& controller = *run.controller;
   double moved = 0.0;  // how far the lead moves the servos' targets, rad, summed
   while (world->time() < 0.5) {
     controller.update(*world);
-    const LinkPose now = poseAt(world->time());
-    const LinkPose ahead = poseAt(world->time() + settings.servo_lead_s);
+    const LinkPose now = targetPoseAt(biped, world->time());
+    const LinkPose ahead = targetPoseAt(biped, world->time() + settings.servo_lead_s);
     for (size_t li = 1; li < biped.plan.links.size(); ++li) {
       ASSERT_LT(1.0 - std::abs(glm::dot(controller.motionTarget().rotations[li], now.rotations[li])),
                 1e-12);
@@ -422,7 +434,7 @@ TEST(TrackingController, ALeadGivesTheServosThePoseAheadAndKeepsTheMotionTargetN
       moved += 2.0 * std::acos(std::min(1.0, std::abs(glm::dot(now.rotations[li],
                                                                 ahead.rotations[li]))));
     }
-    world->step(zero);
+    world->step(run.zero);
   }
   EXPECT_GT(moved, 1.0);  // the lead is not the present pose again
 
