@@ -463,6 +463,26 @@ TEST(SearchSession, AResumedBestIsScoredUnderTheProblemAsItIsNow) {
   EXPECT_NE(snap->best_terms.total, first->snapshot()->best_terms.total);
 }
 
+// A checkpoint keeps the servo lead its search ran with, and one from before the lead resumes
+// without it: a search goes on as it was searched, whatever the problem it is resumed into.
+TEST(SearchSession, ACheckpointKeepsItsServoLeadAndOneFromBeforeHasNone) {
+  const physics::test_util::Character biped = physics::test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  Problem led = makeProblem(biped, 1.0);
+  led.simulation.tracking.servo_lead_s = 0.02;
+  auto first = Session::create(led, small(2, 2)).value();
+  nlohmann::json checkpoint = first->checkpoint();
+  EXPECT_EQ(checkpoint["servo_lead_s"].get<double>(), 0.02);
+  auto resumed = Session::resume(makeProblem(biped, 1.0), checkpoint).value();
+  EXPECT_EQ(resumed->problem().simulation.tracking.servo_lead_s, 0.02);
+  checkpoint.erase("servo_lead_s");
+  resumed = Session::resume(led, checkpoint).value();
+  EXPECT_EQ(resumed->problem().simulation.tracking.servo_lead_s, 0.0);
+  checkpoint["servo_lead_s"] = -1.0;
+  EXPECT_EQ(Session::resume(led, checkpoint).message(),
+            "checkpoint: servo_lead_s: expected seconds in [0, 1]");
+}
+
 // The issue: on the stepper and the hopper a short run improves the fitness by a printed margin
 // within a few generations.
 TEST(SearchSession, ShortRunsImproveTheStepperAndTheHopper) {

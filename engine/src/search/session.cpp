@@ -234,6 +234,11 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
                        w.at("speed").get<double>(),     w.at("heading").get<double>(),
                        w.at("placement").get<double>(), w.at("upright").get<double>(),
                        w.at("energy").get<double>(),    w.value("style", 0.0)};  // absent before the style term
+    // Searched with the servos' lead it had (none in a checkpoint from before the lead).
+    const double lead = checkpoint.value("servo_lead_s", 0.0);
+    if (!(lead >= 0.0 && lead <= 1.0))
+      return Status::error("checkpoint: servo_lead_s: expected seconds in [0, 1]");
+    problem.simulation.tracking.servo_lead_s = lead;
     std::unique_ptr<Session> session(new Session(std::move(problem), settings));
     Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
     if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());
@@ -313,6 +318,7 @@ nlohmann::json Session::checkpoint() const {
             {"start_generations", settings_.start_generations}}},
           {"genome_size", problem_.layout.size()},
           {"weights", weightsJson(problem_.weights)},
+          {"servo_lead_s", problem_.simulation.tracking.servo_lead_s},
           {"optimizer", optimizer_->saveState()},
           {"history", history},
           {"best_point", best_point_},
