@@ -342,7 +342,7 @@ Status TrackingSettings::validate() const {
   if (!positive(limb_torque_scale)) return Status::error("limb_torque_scale must be > 0");
   if (!positive(gravity_m_s2)) return Status::error("gravity_m_s2 must be > 0");
   if (!(std::isfinite(ramp_s) && ramp_s >= 0.0)) return Status::error("ramp_s must be >= 0");
-  if (!(std::isfinite(servo_lead_s) && servo_lead_s >= 0.0 && servo_lead_s <= 1.0))
+  if (!validServoLead(servo_lead_s))
     return Status::error("servo_lead_s must be seconds in [0, 1]");
   BalanceGains b = balance;
   for (int i = 0; i < kBalanceGainCount; ++i) {
@@ -356,6 +356,8 @@ Status TrackingSettings::validate() const {
 }
 
 double servoLag(double step_hz, double rate) { return 1.0 / (step_hz * rate); }
+
+bool validServoLead(double seconds) { return seconds >= 0.0 && seconds <= 1.0; }  // NaN fails
 
 std::vector<double> jointTorqueLimits(const BodyPlan& plan, double support_scale,
                                       double limb_scale, double gravity_m_s2) {

@@ -95,11 +95,11 @@ Status readSettings(const nlohmann::json& json, const std::string& name, Control
   if (Status st = readUint64(s, "seed", where, c.seed); !st.ok()) return st;
   if (Status st = readString(s, "optimizer", where, c.optimizer); !st.ok()) return st;
   if (Status st = readBool(s, "no_prior", where, c.no_prior); !st.ok()) return st;
-  // Searched before the servos led their targets: replayed without a lead, as it was searched.
-  c.servo_lead_s = 0.0;
+  // Searched before the servos led their targets: replayed without a lead (ControllerFile's 0),
+  // as it was searched.
   if (!s.contains("servo_lead_s")) return {};
   if (Status st = readNumber(s, "servo_lead_s", where, c.servo_lead_s); !st.ok()) return st;
-  if (!(c.servo_lead_s >= 0.0 && c.servo_lead_s <= 1.0))
+  if (!physics::validServoLead(c.servo_lead_s))
     return Status::error(where + ": servo_lead_s: expected seconds in [0, 1]");
   return {};
 }

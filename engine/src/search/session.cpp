@@ -12,6 +12,7 @@
 #include <unistd.h>
 #endif
 
+#include "sinew/physics/tracking.h"
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
 #include "sinew/search/portfolio.h"
@@ -236,7 +237,7 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
                        w.at("energy").get<double>(),    w.value("style", 0.0)};  // absent before the style term
     // Searched with the servos' lead it had (none in a checkpoint from before the lead).
     const double lead = checkpoint.value("servo_lead_s", 0.0);
-    if (!(lead >= 0.0 && lead <= 1.0))
+    if (!physics::validServoLead(lead))
       return Status::error("checkpoint: servo_lead_s: expected seconds in [0, 1]");
     problem.simulation.tracking.servo_lead_s = lead;
     std::unique_ptr<Session> session(new Session(std::move(problem), settings));

@@ -157,6 +157,8 @@ struct TrackingSettings {
 // How far a servo closing `rate` of its error each step of a world stepping at `step_hz` trails a
 // target moving at a steady speed, seconds: 1 / (step_hz x rate) (20.8 ms at 240 Hz and 0.2).
 double servoLag(double step_hz, double rate);
+// Whether `seconds` is a servo lead TrackingSettings, best.json and checkpoints accept: [0, 1].
+bool validServoLead(double seconds);
 
 // Joint torque limits (links, N m; 0 for the base): support_scale x body weight x size for
 // joints whose subtree holds a foot, limb_scale x subtree weight x size for the others.
