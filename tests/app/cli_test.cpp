@@ -505,6 +505,7 @@ TEST(CliTest, EvolveWritesTheBestControllerAndResumes) {
   EXPECT_EQ(best["fitness"]["energy"].get<double>(), 0.0);  // --weights energy=0
   // The servos led their targets by their lag (240 Hz, rate 0.2), and the replay below does too.
   EXPECT_NEAR(best["settings"]["servo_lead_s"].get<double>(), 1.0 / 48.0, 1e-12);
+  EXPECT_TRUE(best["settings"]["lead_yielding_legs"].get<bool>());
   const double survived = best["fitness"]["survived_s"].get<double>();
   // The controller replays: the same window, the same fall (or none).
   const auto replay_json = dir / "replay.json";

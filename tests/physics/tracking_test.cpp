@@ -442,6 +442,67 @@ TEST(TrackingController, ALeadGivesTheServosThePoseAheadAndKeepsTheMotionTargetN
   EXPECT_NE(settings.validate().message().find("servo_lead_s"), std::string::npos);
 }
 
+// A planted leg's servos yield: they close (1 - stance_yield) of what the others do a step, so
+// they trail by the lead / (1 - stance_yield) and are given the motion that far ahead; a leg in
+// the air keeps the one lead. The feedback's gains are 0 so that only the swing hip (placed
+// relative to the base as it is) differs from the motion. Without lead_yielding_legs (a
+// best.json from before it) every leg has the one lead.
+void expectPlantedLegsLedBy(double yielding_lead_factor, bool lead_yielding_legs) {
+  const test_util::Character biped = test_util::loadCharacter("biped_walk.bvh");
+  ASSERT_FALSE(biped.plan.links.empty());
+  TrackingSettings settings;
+  settings.ramp_s = 0.0;
+  settings.balance = BalanceGains{};
+  settings.balance.torso = 0.0;
+  settings.balance.swing_lift = 0.0;
+  settings.balance.stance_yield = 0.5;
+  settings.servo_lead_s = servoLag(240.0, settings.servo_rate);
+  settings.lead_yielding_legs = lead_yielding_legs;
+  AtTarget run = startAtTarget(biped, settings);
+  ASSERT_TRUE(run.controller);
+  World* world = run.world.get();
+  TrackingController& controller = *run.controller;
+  const BodyPlan& plan = biped.plan;
+  std::vector<int> feet;
+  for (size_t li = 0; li < plan.links.size(); ++li)
+    if (plan.links[li].foot) feet.push_back(static_cast<int>(li));
+  ASSERT_EQ(feet.size(), 2u);
+  auto legOf = [&](int li) {  // the foot whose leg holds link li, -1 for none
+    for (size_t f = 0; f < feet.size(); ++f)
+      if (isAncestorLink(plan, li, feet[f]) && !isAncestorLink(plan, li, feet[1 - f]))
+        return static_cast<int>(f);
+    return -1;
+  };
+  int planted = 0, swinging = 0;  // leg-steps seen of each kind
+  while (world->time() < 0.6) {
+    const std::vector<std::uint8_t> contacts = world->linkContacts();
+    controller.update(*world);
+    const double t = world->time();
+    const LinkPose led = targetPoseAt(biped, t + settings.servo_lead_s);
+    const LinkPose yielding = targetPoseAt(biped, t + settings.servo_lead_s * yielding_lead_factor);
+    for (size_t li = 1; li < plan.links.size(); ++li) {
+      const int f = legOf(static_cast<int>(li));
+      if (f < 0) continue;
+      const bool down = contacts[static_cast<size_t>(feet[static_cast<size_t>(f)])] != 0;
+      const bool hip = legOf(plan.links[li].parent) < 0;
+      if (!down && hip) continue;  // the swing hip is placed (placeSwingFoot)
+      const glm::dquat& expected = down ? yielding.rotations[li] : led.rotations[li];
+      ASSERT_LT(1.0 - std::abs(glm::dot(controller.target().rotations[li], expected)), 1e-9)
+          << plan.links[li].name << " at " << t << (down ? " planted" : " in the air");
+      ASSERT_NEAR(controller.target().angles[li], down ? yielding.angles[li] : led.angles[li], 1e-9);
+      (down ? planted : swinging) += 1;
+    }
+    world->step(run.zero);
+  }
+  EXPECT_GT(planted, 100);
+  EXPECT_GT(swinging, 100);
+}
+
+TEST(TrackingController, APlantedLegThatYieldsIsLedByItsOwnLag) {
+  expectPlantedLegsLedBy(1.0 / (1.0 - 0.5), true);
+  expectPlantedLegsLedBy(1.0, false);
+}
+
 // A servo closing a fifth of its error a step trails a moving target by dt / 0.2 (servoLag):
 // in free flight (no gravity, no ground, no feedback) leading the targets by that lag takes most
 // of the tracking error out. The stepper's joints: 3.0 deg RMS without the lead, 1.0 with it.

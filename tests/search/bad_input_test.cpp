@@ -121,17 +121,41 @@ TEST(SearchBadInput, TheServoLeadRoundTripsAndIsNoneInOlderFiles) {
   const physics::test_util::Character c = biped();
   test::TempDir dir;
   Result<ControllerFile> led = editedController(
-      c, [](nlohmann::json& j) { j["settings"]["servo_lead_s"] = 0.02; }, dir);
+      c,
+      [](nlohmann::json& j) {
+        j["settings"]["servo_lead_s"] = 0.02;
+        j["settings"]["lead_yielding_legs"] = true;
+      },
+      dir);
   ASSERT_TRUE(led.ok()) << led.message();
   EXPECT_EQ(led.value().servo_lead_s, 0.02);
+  EXPECT_TRUE(led.value().lead_yielding_legs);
   physics::TrackingSettings tracking;
   applyController(led.value(), tracking);
   EXPECT_EQ(tracking.servo_lead_s, 0.02);
+  EXPECT_TRUE(tracking.lead_yielding_legs);
+  // Searched with the lead before the yielding legs were led further: without that.
+  Result<ControllerFile> led_before = editedController(
+      c,
+      [](nlohmann::json& j) {
+        j["settings"]["servo_lead_s"] = 0.02;
+        j["settings"].erase("lead_yielding_legs");
+      },
+      dir);
+  ASSERT_TRUE(led_before.ok()) << led_before.message();
+  EXPECT_TRUE(led_before.value().warnings.empty());
+  EXPECT_EQ(led_before.value().servo_lead_s, 0.02);
+  EXPECT_FALSE(led_before.value().lead_yielding_legs);
   Result<ControllerFile> older = editedController(
       c, [](nlohmann::json& j) { j["settings"].erase("servo_lead_s"); }, dir);
   ASSERT_TRUE(older.ok()) << older.message();
   EXPECT_TRUE(older.value().warnings.empty());
   EXPECT_EQ(older.value().servo_lead_s, 0.0);
+  Result<ControllerFile> not_bool = editedController(
+      c, [](nlohmann::json& j) { j["settings"]["lead_yielding_legs"] = 1; }, dir);
+  ASSERT_FALSE(not_bool.ok());
+  EXPECT_NE(not_bool.message().find("settings: lead_yielding_legs"), std::string::npos)
+      << not_bool.message();
   Result<ControllerFile> far = editedController(
       c, [](nlohmann::json& j) { j["settings"]["servo_lead_s"] = 2.0; }, dir);
   EXPECT_EQ(far.message(), (dir / "edited.json").string() +

@@ -470,17 +470,27 @@ TEST(SearchSession, ACheckpointKeepsItsServoLeadAndOneFromBeforeHasNone) {
   ASSERT_FALSE(biped.plan.links.empty());
   Problem led = makeProblem(biped, 1.0);
   led.simulation.tracking.servo_lead_s = 0.02;
+  led.simulation.tracking.lead_yielding_legs = true;
   auto first = Session::create(led, small(2, 2)).value();
   nlohmann::json checkpoint = first->checkpoint();
   EXPECT_EQ(checkpoint["servo_lead_s"].get<double>(), 0.02);
+  EXPECT_TRUE(checkpoint["lead_yielding_legs"].get<bool>());
   auto resumed = Session::resume(makeProblem(biped, 1.0), checkpoint).value();
   EXPECT_EQ(resumed->problem().simulation.tracking.servo_lead_s, 0.02);
+  EXPECT_TRUE(resumed->problem().simulation.tracking.lead_yielding_legs);
+  checkpoint.erase("lead_yielding_legs");  // from before the yielding legs were led further
+  resumed = Session::resume(led, checkpoint).value();
+  EXPECT_FALSE(resumed->problem().simulation.tracking.lead_yielding_legs);
   checkpoint.erase("servo_lead_s");
   resumed = Session::resume(led, checkpoint).value();
   EXPECT_EQ(resumed->problem().simulation.tracking.servo_lead_s, 0.0);
   checkpoint["servo_lead_s"] = -1.0;
   EXPECT_EQ(Session::resume(led, checkpoint).message(),
             "checkpoint: servo_lead_s: expected seconds in [0, 1]");
+  checkpoint["servo_lead_s"] = 0.02;
+  checkpoint["lead_yielding_legs"] = "yes";
+  EXPECT_EQ(Session::resume(led, checkpoint).message(),
+            "checkpoint: lead_yielding_legs: expected true or false");
 }
 
 // The issue: on the stepper and the hopper a short run improves the fitness by a printed margin

@@ -545,9 +545,11 @@ LinkPose TrackingController::motionAt(double time) {
 void TrackingController::update(World& world) {
   const double t = world.time();
   const double lead = settings_.servo_lead_s;
-  // The servos' pose ahead by the lead, then the present one (last: translations_ stay the
-  // present's), which the feedback and the tracking error are measured against.
+  // The servos' pose ahead by the lead (the planted legs that yield further), then the present
+  // one (last: translations_ stay the present's), which the feedback and the tracking error are
+  // measured against.
   if (lead > 0.0) target_ = motionAt(t + lead);
+  leadYieldingLegs(world, t);
   motion_ = motionAt(t);
   if (lead <= 0.0) target_ = motion_;
   if (settings_.balance.swing_lift > 0.0) liftSwingFeet(t + lead);
@@ -563,6 +565,30 @@ void TrackingController::update(World& world) {
   if (settings_.feedback && balance_) applyFeedback(world);
   setServoRates(world);
   world.setServoTargets(target_, servo_rates_);
+}
+
+// A leg whose foot is down yields (setServoRates): its servos close (1 - stance_yield) of what
+// the others do each step, so they trail their target by servoLag at that slower rate, the
+// lead / (1 - stance_yield). Those legs get the motion's pose that much ahead.
+void TrackingController::leadYieldingLegs(const World& world, double t) {
+  const double yield = settings_.balance.stance_yield;
+  if (!settings_.lead_yielding_legs || settings_.servo_lead_s <= 0.0 || yield <= 0.0 ||
+      !(settings_.feedback && balance_))
+    return;
+  const std::vector<std::uint8_t>& contacts = world.linkContacts();
+  bool any_down = false;
+  for (int foot : feet_) any_down = any_down || contacts[static_cast<size_t>(foot)] != 0;
+  if (!any_down) return;
+  const LinkPose ahead = motionAt(t + settings_.servo_lead_s / (1.0 - yield));
+  for (size_t f = 0; f < feet_.size(); ++f) {
+    if (contacts[static_cast<size_t>(feet_[f])] == 0) continue;
+    auto take = [&](int li) {
+      target_.rotations[static_cast<size_t>(li)] = ahead.rotations[static_cast<size_t>(li)];
+      target_.angles[static_cast<size_t>(li)] = ahead.angles[static_cast<size_t>(li)];
+    };
+    take(feet_[f]);
+    for (int li : legs_[f]) take(li);
+  }
 }
 
 void TrackingController::setServoRates(const World& world) {

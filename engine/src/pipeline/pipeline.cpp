@@ -180,6 +180,7 @@ physics::SimulationSettings simulationSettings(const PhysicsSettings& physics) {
   simulation.pushes = physics.pushes;
   simulation.tracking.servo_lead_s =
       physics::servoLag(simulation.world.step_hz, simulation.tracking.servo_rate);
+  simulation.tracking.lead_yielding_legs = true;
   return simulation;
 }
 

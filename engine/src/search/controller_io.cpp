@@ -28,6 +28,7 @@ nlohmann::json balanceJson(physics::BalanceGains gains) {
 void applyController(const ControllerFile& controller, physics::TrackingSettings& tracking) {
   tracking.balance = controller.balance;
   tracking.servo_lead_s = controller.servo_lead_s;
+  tracking.lead_yielding_legs = controller.lead_yielding_legs;
 }
 
 Status saveController(const std::filesystem::path& path, const ControllerFile& c,
@@ -43,7 +44,8 @@ Status saveController(const std::filesystem::path& path, const ControllerFile& c
         {"seed", c.seed},
         {"optimizer", c.optimizer},
         {"no_prior", c.no_prior},
-        {"servo_lead_s", c.servo_lead_s}}},
+        {"servo_lead_s", c.servo_lead_s},
+        {"lead_yielding_legs", c.lead_yielding_legs}}},
       {"fitness", fitnessJson(c.fitness)}};
   writePathJson(json, "rig", c.rig);
   writePathJson(json, "clip", c.clip);
@@ -86,8 +88,10 @@ Status readSettings(const nlohmann::json& json, const std::string& name, Control
   if (!found.ok()) return found.status();
   const nlohmann::json& s = *found.value();
   const std::string where = name + ": settings";
-  unknownKeys(s, {"window_s", "terrain", "seed", "optimizer", "no_prior", "servo_lead_s"}, where,
-              &c.warnings);
+  unknownKeys(s,
+              {"window_s", "terrain", "seed", "optimizer", "no_prior", "servo_lead_s",
+               "lead_yielding_legs"},
+              where, &c.warnings);
   if (Status st = readNumber(s, "window_s", where, c.window_s); !st.ok()) return st;
   if (!(c.window_s > 0.0 && c.window_s <= 3600.0))
     return Status::error(where + ": window_s: expected seconds in (0, 3600]");
@@ -96,12 +100,13 @@ Status readSettings(const nlohmann::json& json, const std::string& name, Control
   if (Status st = readString(s, "optimizer", where, c.optimizer); !st.ok()) return st;
   if (Status st = readBool(s, "no_prior", where, c.no_prior); !st.ok()) return st;
   // Searched before the servos led their targets: replayed without a lead (ControllerFile's 0),
-  // as it was searched.
+  // as it was searched; before the yielding legs were led further, without that.
   if (!s.contains("servo_lead_s")) return {};
   if (Status st = readNumber(s, "servo_lead_s", where, c.servo_lead_s); !st.ok()) return st;
   if (!physics::validServoLead(c.servo_lead_s))
     return Status::error(where + ": servo_lead_s: expected seconds in [0, 1]");
-  return {};
+  if (!s.contains("lead_yielding_legs")) return {};
+  return readBool(s, "lead_yielding_legs", where, c.lead_yielding_legs);
 }
 
 }  // namespace
@@ -163,6 +168,7 @@ Status exportBest(const Problem& problem, std::span<const double> point,
   meta.balance = problem.layout.decodeGains(point);
   meta.window_s = problem.simulation.seconds;
   meta.servo_lead_s = problem.simulation.tracking.servo_lead_s;
+  meta.lead_yielding_legs = problem.simulation.tracking.lead_yielding_legs;
   meta.fitness = fitness;
   if (Status s = saveController(dir / "best.json", meta, rig.skeleton); !s.ok()) return s;
   const Evaluation replay = evaluate(problem, point, nullptr, true);

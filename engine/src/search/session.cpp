@@ -240,6 +240,9 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     if (!physics::validServoLead(lead))
       return Status::error("checkpoint: servo_lead_s: expected seconds in [0, 1]");
     problem.simulation.tracking.servo_lead_s = lead;
+    if (!checkpoint.value("lead_yielding_legs", nlohmann::json(false)).is_boolean())
+      return Status::error("checkpoint: lead_yielding_legs: expected true or false");
+    problem.simulation.tracking.lead_yielding_legs = checkpoint.value("lead_yielding_legs", false);
     std::unique_ptr<Session> session(new Session(std::move(problem), settings));
     Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
     if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());
@@ -320,6 +323,7 @@ nlohmann::json Session::checkpoint() const {
           {"genome_size", problem_.layout.size()},
           {"weights", weightsJson(problem_.weights)},
           {"servo_lead_s", problem_.simulation.tracking.servo_lead_s},
+          {"lead_yielding_legs", problem_.simulation.tracking.lead_yielding_legs},
           {"optimizer", optimizer_->saveState()},
           {"history", history},
           {"best_point", best_point_},

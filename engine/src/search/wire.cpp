@@ -146,6 +146,7 @@ std::uint64_t fingerprint(const Problem& problem) {
   for (const physics::Link& link : problem.plan.links) mix(h, link.mass_kg);
   mix(h, problem.simulation.seconds);
   mix(h, problem.simulation.tracking.servo_lead_s);
+  mix(h, problem.simulation.tracking.lead_yielding_legs ? 1.0 : 0.0);
   FitnessWeights weights = problem.weights;
   for (int k = 0; k < kFitnessTermCount; ++k) mix(h, fitnessWeight(weights, k));
   for (const auto* pushes : {&problem.simulation.pushes, &problem.trial_pushes}) {

@@ -149,6 +149,11 @@ struct TrackingSettings {
   // stay at the present time. 0 here (and in a best.json that predates it); the search's
   // problems lead by servoLag() (pipeline::simulationSettings).
   double servo_lead_s = 0.0;
+  // A planted leg that yields (balance.stance_yield) closes (1 - yield) of what the others do a
+  // step and trails by servo_lead_s / (1 - yield): when set, its servos (hip to foot) are led by
+  // that instead. Off here (and in a best.json or checkpoint that predates it); the search's
+  // problems set it (pipeline::simulationSettings).
+  bool lead_yielding_legs = false;
   BalanceGains balance;
 
   Status validate() const;  // the message names the offending field
@@ -234,6 +239,7 @@ class TrackingController {
   void driveStanceLegs(const LegPair& pair, const std::vector<std::uint8_t>& contacts,
                        const glm::dvec3& velocity_error, double heading_target,
                        double heading_error);
+  void leadYieldingLegs(const World& world, double t);  // the yielding legs' target, further ahead
   void setServoRates(const World& world);  // servo_rates_ for this step
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
   void setForward(const spectral::TargetMotion& target);  // every pair's forward_local

@@ -32,6 +32,7 @@ struct ControllerFile {
   std::string optimizer;
   bool no_prior = false;
   double servo_lead_s = 0.0;  // physics::TrackingSettings::servo_lead_s the search ran with
+  bool lead_yielding_legs = false;  // and its lead_yielding_legs
   FitnessTerms fitness;
   std::string rig;
   std::string clip;
