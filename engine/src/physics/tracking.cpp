@@ -571,38 +571,36 @@ void TrackingController::update(World& world) {
 // the others do each step, so they trail their target by servoLag at that slower rate, the
 // lead / (1 - stance_yield). Those legs get the motion's pose that much ahead.
 void TrackingController::leadYieldingLegs(const World& world, double t) {
-  const double yield = settings_.balance.stance_yield;
-  if (!settings_.lead_yielding_legs || settings_.servo_lead_s <= 0.0 || yield <= 0.0 ||
-      !(settings_.feedback && balance_))
-    return;
-  const std::vector<std::uint8_t>& contacts = world.linkContacts();
-  bool any_down = false;
-  for (int foot : feet_) any_down = any_down || contacts[static_cast<size_t>(foot)] != 0;
-  if (!any_down) return;
-  const LinkPose ahead = motionAt(t + settings_.servo_lead_s / (1.0 - yield));
-  for (size_t f = 0; f < feet_.size(); ++f) {
-    if (contacts[static_cast<size_t>(feet_[f])] == 0) continue;
-    auto take = [&](int li) {
-      target_.rotations[static_cast<size_t>(li)] = ahead.rotations[static_cast<size_t>(li)];
-      target_.angles[static_cast<size_t>(li)] = ahead.angles[static_cast<size_t>(li)];
-    };
-    take(feet_[f]);
-    for (int li : legs_[f]) take(li);
+  if (!settings_.lead_yielding_legs || settings_.servo_lead_s <= 0.0) return;
+  const std::vector<int> yielding = yieldingLinks(world);
+  if (yielding.empty()) return;
+  const LinkPose ahead =
+      motionAt(t + settings_.servo_lead_s / (1.0 - settings_.balance.stance_yield));
+  for (int li : yielding) {
+    target_.rotations[static_cast<size_t>(li)] = ahead.rotations[static_cast<size_t>(li)];
+    target_.angles[static_cast<size_t>(li)] = ahead.angles[static_cast<size_t>(li)];
   }
 }
 
-void TrackingController::setServoRates(const World& world) {
-  const double yield = settings_.balance.stance_yield;
-  servo_rates_.clear();
-  if (!(settings_.feedback && balance_) || yield <= 0.0) return;
+std::vector<int> TrackingController::yieldingLinks(const World& world) const {
+  std::vector<int> links;
+  if (!(settings_.feedback && balance_) || settings_.balance.stance_yield <= 0.0) return links;
   const std::vector<std::uint8_t>& contacts = world.linkContacts();
-  servo_rates_.assign(plan_->links.size(), settings_.servo_rate);
   for (size_t f = 0; f < feet_.size(); ++f) {
-    const size_t foot = static_cast<size_t>(feet_[f]);
-    if (contacts[foot] == 0) continue;
-    servo_rates_[foot] = settings_.servo_rate * (1.0 - yield);
-    for (int li : legs_[f]) servo_rates_[static_cast<size_t>(li)] = servo_rates_[foot];
+    if (contacts[static_cast<size_t>(feet_[f])] == 0) continue;
+    links.push_back(feet_[f]);
+    links.insert(links.end(), legs_[f].begin(), legs_[f].end());
   }
+  return links;
+}
+
+void TrackingController::setServoRates(const World& world) {
+  servo_rates_.clear();
+  if (!(settings_.feedback && balance_) || settings_.balance.stance_yield <= 0.0) return;
+  servo_rates_.assign(plan_->links.size(), settings_.servo_rate);
+  for (int li : yieldingLinks(world))
+    servo_rates_[static_cast<size_t>(li)] =
+        settings_.servo_rate * (1.0 - settings_.balance.stance_yield);
 }
 
 void TrackingController::referenceKinematics() {

@@ -16,6 +16,7 @@
 #include "sinew/search/cmaes.h"
 #include "sinew/search/genetic.h"
 #include "sinew/search/portfolio.h"
+#include "state_json.h"
 
 namespace sinew::search {
 namespace {
@@ -240,9 +241,12 @@ Result<std::unique_ptr<Session>> Session::resume(Problem problem,
     if (!physics::validServoLead(lead))
       return Status::error("checkpoint: servo_lead_s: expected seconds in [0, 1]");
     problem.simulation.tracking.servo_lead_s = lead;
-    if (!checkpoint.value("lead_yielding_legs", nlohmann::json(false)).is_boolean())
-      return Status::error("checkpoint: lead_yielding_legs: expected true or false");
-    problem.simulation.tracking.lead_yielding_legs = checkpoint.value("lead_yielding_legs", false);
+    problem.simulation.tracking.lead_yielding_legs = false;  // a checkpoint from before it
+    if (checkpoint.contains("lead_yielding_legs"))
+      if (Status read = state_json::readBool(checkpoint, "lead_yielding_legs", "checkpoint",
+                                          problem.simulation.tracking.lead_yielding_legs);
+          !read.ok())
+        return read;
     std::unique_ptr<Session> session(new Session(std::move(problem), settings));
     Result<std::unique_ptr<Optimizer>> optimizer = Optimizer::load(checkpoint.at("optimizer"));
     if (!optimizer.ok()) return Status::error("checkpoint: " + optimizer.message());

@@ -240,6 +240,9 @@ class TrackingController {
                        const glm::dvec3& velocity_error, double heading_target,
                        double heading_error);
   void leadYieldingLegs(const World& world, double t);  // the yielding legs' target, further ahead
+  // The links that yield this step (stance_yield, with feedback): every foot that is down and the
+  // leg above it (legs_); none without a yield.
+  std::vector<int> yieldingLinks(const World& world) const;
   void setServoRates(const World& world);  // servo_rates_ for this step
   void referenceKinematics();  // reference_com_ and reference_ankles_ from motion_
   void setForward(const spectral::TargetMotion& target);  // every pair's forward_local
